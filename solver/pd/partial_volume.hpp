@@ -1,0 +1,21 @@
+#pragma once
+// Partial-volume factor β(|ξ|): the fraction of neighbour j's cell that lies
+// inside the horizon (SPEC §1).
+//  none     β = 1 for |ξ| ≤ δ.
+//  seed001  seed 001 eq 7.2: 1 for |ξ| ≤ δ − Δx/2, (δ + Δx/2 − |ξ|)/Δx up to δ, 0 beyond.
+//  extended the same ramp continued to δ + Δx/2 (family reaches δ + Δx/2).
+#include <optional>
+#include <string_view>
+
+namespace pdmpm::pd {
+
+enum class PartialVolume { none, seed001, extended };
+
+double partial_volume(PartialVolume pv, double r, double delta, double dx);
+// Largest bond length with β > 0, in units of Δx (the family radius).
+double family_ratio(PartialVolume pv, double delta, double dx);
+
+std::string_view name(PartialVolume pv);
+std::optional<PartialVolume> parse_partial_volume(std::string_view s);
+
+}  // namespace pdmpm::pd

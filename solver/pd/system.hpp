@@ -1,0 +1,39 @@
+#pragma once
+// Everything a peridynamic force model acts on: particles, families, the bond
+// table and the per-bond broken flags.
+#include <cstdint>
+#include <vector>
+
+#include "solver/core/families.hpp"
+#include "solver/core/particles.hpp"
+#include "solver/pd/bond_table.hpp"
+#include "solver/pd/material.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+struct System {
+  core::Particles<D> particles;
+  core::Families<D> families;
+  BondTable<D> table;
+  std::vector<std::uint8_t> broken;  // per bond; 1 = μ = 0 for ever after
+
+  Setting setting = Setting::solid3d;
+  Elastic material;
+  double delta = 0.0;    // horizon δ
+  double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
+  Influence influence = Influence::constant;
+  PartialVolume partial_volume = PartialVolume::seed001;
+
+  double spacing() const { return particles.lattice.spacing; }
+  Index n_real() const { return particles.n_real; }
+
+  // Build families and the bond table for the current particles.
+  void connect() {
+    families = core::Families<D>::build(particles, family_ratio(partial_volume, delta, spacing()));
+    table = BondTable<D>::build(families.stencil, spacing(), delta, influence, partial_volume);
+    broken.assign(families.n_bonds(), 0);
+  }
+};
+
+}  // namespace pdmpm::pd

@@ -1,0 +1,52 @@
+#pragma once
+// Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j over intact bonds (SPEC §3)
+// and the dilatation θ_i = (d/m_i) Σ_j ω β |ξ| e V_j.
+#include <vector>
+
+#include "solver/pd/bond_kinematics.hpp"
+#include "solver/pd/system.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+double weighted_volume(const System<D>& sys, Index i) {
+  const auto& fam = sys.families;
+  const auto& t = sys.table;
+  double m = 0.0;
+  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
+    if (sys.broken[b]) continue;
+    const int k = fam.shape[b];
+    m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[fam.neighbor[b]];
+  }
+  return m;
+}
+
+// Weighted volume of every particle, ghosts copying their owner's.
+template <int D>
+std::vector<double> weighted_volumes(const System<D>& sys) {
+  const auto& p = sys.particles;
+  std::vector<double> m(p.size(), 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < p.n_real; ++i) m[i] = weighted_volume(sys, i);
+  for (Index g = 0; g < p.n_ghost(); ++g) m[p.n_real + g] = m[p.ghost_owner[g]];
+  return m;
+}
+
+template <int D>
+double dilatation_of(const System<D>& sys, Index i, double m_i) {
+  if (m_i <= 0.0) return 0.0;
+  const auto& fam = sys.families;
+  const auto& t = sys.table;
+  const auto& p = sys.particles;
+  double sum = 0.0;
+  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
+    if (sys.broken[b]) continue;
+    const Index j = fam.neighbor[b];
+    const int k = fam.shape[b];
+    const auto bond = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
+    sum += t.weight[k] * t.length[k] * bond.e * p.volume[j];
+  }
+  return D * sum / m_i;
+}
+
+}  // namespace pdmpm::pd
