@@ -1,0 +1,47 @@
+#include "verification/support/provenance.hpp"
+
+#include <omp.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <fstream>
+#include <string>
+
+namespace pdmpm::test {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown";
+}
+
+// "dirty" if the source tree has uncommitted changes, "clean" if not, "unknown" without git.
+std::string tree_state() {
+  const std::string cmd = std::string("git -C '") + PDMPM_SOURCE_DIR + "' status --porcelain 2>/dev/null";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  if (!pipe) return "unknown";
+  std::array<char, 256> buf{};
+  bool any = false;
+  while (fgets(buf.data(), buf.size(), pipe)) any = true;
+  const int rc = pclose(pipe);
+  if (rc != 0) return "unknown";
+  return any ? "dirty" : "clean";
+}
+
+}  // namespace
+
+nlohmann::json provenance() {
+  const std::time_t now = std::time(nullptr);
+  char date[64];
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  return {{"git_sha", PDMPM_GIT_SHA}, {"tree", tree_state()},     {"date", date},
+          {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS},   {"cpu", cpu_model()},
+          {"threads", omp_get_max_threads()}};
+}
+
+}  // namespace pdmpm::test
