@@ -1,0 +1,21 @@
+#pragma once
+// The subcommands of pdmpm. Each returns the process exit status:
+// 0 success, 2 bad input (nothing written), 3 run failed (unstable, not converged).
+#include <string>
+
+namespace pdmpm::app {
+
+struct RunArgs {
+  std::string scene, out;
+  int threads = 0;
+  bool quiet = false, no_fields = false;
+};
+int run_command(const RunArgs& args);
+
+struct ConstantsArgs {
+  double E = 200e9, nu = 0.25, delta = 3.015e-3, thickness = 1e-3, area = 1e-6, G0 = 0.0;
+  std::string format = "table";
+};
+int constants_command(const ConstantsArgs& args);
+
+}  // namespace pdmpm::app

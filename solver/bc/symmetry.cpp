@@ -1,0 +1,60 @@
+#include "solver/bc/symmetry.hpp"
+
+#include <cmath>
+#include <set>
+
+#include "solver/core/error.hpp"
+#include "solver/core/site_map.hpp"
+
+namespace pdmpm::bc {
+
+template <int D>
+void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach,
+                         const std::string& file) {
+  const double dx = p.lattice.spacing;
+  for (const auto& plane : planes) {
+    const int a = plane.axis;
+    // Twice the plane's site coordinate must be an integer.
+    const double twice = 2.0 * (plane.position - p.lattice.origin[a]) / dx;
+    const double rounded = std::round(twice);
+    if (std::abs(twice - rounded) > 1e-6)
+      throw InputError(file, plane.key + ".position",
+                       "a symmetry plane must pass through lattice sites or midway between them "
+                       "(position = origin + k Δx/2)");
+    const auto two_p = static_cast<std::int32_t>(rounded);
+    bool below = false, above = false;
+    for (Index i = 0; i < p.n_real; ++i) {
+      below = below || 2 * p.site[i][a] < two_p;
+      above = above || 2 * p.site[i][a] > two_p;
+    }
+    if (below && above)
+      throw InputError(file, plane.key, "the body lies on both sides of this symmetry plane; keep only one half");
+    const auto reach_sites = static_cast<std::int32_t>(std::floor(reach / dx * (1.0 + 1e-10)));
+
+    std::set<std::vector<std::int32_t>> occupied;
+    for (const auto& s : p.site) occupied.insert(std::vector<std::int32_t>(s.data(), s.data() + D));
+    const Index existing = p.size();
+    for (Index i = 0; i < existing; ++i) {
+      IVec<D> m = p.site[i];
+      m[a] = two_p - m[a];
+      if (m[a] == p.site[i][a]) continue;                      // on the plane: its own mirror
+      if (std::abs(2 * p.site[i][a] - two_p) > 2 * reach_sites) continue;  // too far to be in a family
+      std::vector<std::int32_t> key(m.data(), m.data() + D);
+      if (occupied.count(key)) continue;
+      occupied.insert(key);
+      const bool is_ghost = i >= p.n_real;
+      const Index owner = is_ghost ? p.ghost_owner[i - p.n_real] : i;
+      Vec<D> sign = is_ghost ? p.ghost_sign[i - p.n_real] : Vec<D>::Ones();
+      sign[a] = -sign[a];
+      p.push_back(m, p.volume[i]);
+      p.ghost_owner.push_back(owner);
+      p.ghost_sign.push_back(sign);
+    }
+  }
+}
+
+template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double, const std::string&);
+template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double, const std::string&);
+template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double, const std::string&);
+
+}  // namespace pdmpm::bc

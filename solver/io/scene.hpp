@@ -1,0 +1,121 @@
+#pragma once
+// A validated scene: everything a run needs, read from a TOML file by
+// parse_scene(). Vectors have exactly `dimension` components. The README's
+// "Scene reference" documents every key.
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/pd/influence.hpp"
+#include "solver/pd/material.hpp"
+#include "solver/pd/partial_volume.hpp"
+
+namespace pdmpm::io {
+
+struct ShapeSpec {
+  std::string key;   // key path, for messages
+  std::string type;  // box | ball | cylinder
+  bool subtract = false;
+  std::vector<double> min, max, center;
+  double radius = 0.0, height = 0.0;
+  int axis = 2;
+};
+
+enum class BoundaryKind { fixed, displacement, velocity, traction, analytic };
+
+struct BoundarySpec {
+  std::string key, name;
+  BoundaryKind kind = BoundaryKind::fixed;
+  std::vector<ShapeSpec> region;
+  std::vector<std::string> value;  // per component; "free" leaves it unconstrained
+  double layer = 0.0;              // traction: loaded layer thickness (0 → Δx)
+  std::string callback;            // analytic
+  std::map<std::string, double> parameters;
+};
+
+struct SymmetrySpec {
+  std::string key;
+  int axis = 0;
+  double position = 0.0;
+};
+
+struct PrecrackSpec {
+  std::string key;
+  std::vector<std::vector<double>> points;  // 2D: from, to; 3D: three corners
+};
+
+struct IndenterSpec {
+  std::vector<double> center, velocity;
+  double radius = 0.0, stiffness = 0.0;
+};
+
+struct ProbeSpec {
+  std::string name;
+  std::vector<double> point;
+};
+
+struct ContactSpec {
+  bool enabled = false;
+  double stiffness_factor = 15.0;  // c_s = 15 c (seed 001 eq 6.3)
+  double distance_factor = 0.9;    // d = min(0.9 |ξ|, 1.35 Δx) (seed 001 eq 6.4)
+  double max_distance = 1.35;      // in units of Δx
+};
+
+enum class Integrator { verlet, adr };
+enum class StableStepEstimate { silling_askari, power_iteration };
+
+struct TimeSpec {
+  Integrator integrator = Integrator::verlet;
+  std::optional<double> end_time;
+  std::optional<std::int64_t> steps;
+  std::optional<double> dt;
+  double safety_factor = 0.8;
+  StableStepEstimate estimate = StableStepEstimate::silling_askari;
+  double tolerance = 1e-6;          // adr: residual relative to the load scale
+  std::int64_t max_steps = 200000;  // adr, per load step
+  std::int64_t load_steps = 1;      // adr: t in expressions runs 1/N, 2/N, …, 1
+  double energy_growth_limit = 10;  // instability: E > limit × (E₀ + |work in|)
+};
+
+struct OutputSpec {
+  std::optional<std::int64_t> frames, every;
+  std::optional<std::int64_t> history_every;
+  std::vector<std::string> fields;
+};
+
+struct Scene {
+  std::string file, id, description;
+  int dimension = 3;
+  pd::Setting setting = pd::Setting::solid3d;
+  double spacing = 0.0, delta = 0.0, measure = 1.0;
+  std::optional<std::vector<double>> lattice_origin;
+  pd::PartialVolume partial_volume = pd::PartialVolume::seed001;
+  std::vector<ShapeSpec> shapes;
+
+  pd::Elastic material;
+  std::optional<double> critical_stretch, fracture_energy;
+  std::string model = "pmb";
+  pd::Influence influence = pd::Influence::constant;
+  bool damage = false;
+  ContactSpec contact;
+
+  TimeSpec time;
+  std::vector<BoundarySpec> boundaries;
+  std::vector<SymmetrySpec> symmetries;
+  std::vector<PrecrackSpec> precracks;
+  std::vector<std::string> body_force;  // force density expressions, empty = none
+  std::optional<IndenterSpec> indenter;
+  std::vector<ProbeSpec> probes;
+  OutputSpec output;
+};
+
+// Field names `output.fields` may list.
+const std::vector<std::string>& field_names();
+
+// Reads and validates a scene file; throws InputError on any problem.
+Scene parse_scene(const std::string& path);
+Scene parse_scene_text(const std::string& text, const std::string& file_label);
+
+}  // namespace pdmpm::io

@@ -1,0 +1,381 @@
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
+
+#include "solver/bc/analytic_field.hpp"
+#include "solver/bc/expression.hpp"
+#include "solver/io/scene.hpp"
+#include "solver/io/toml_reader.hpp"
+#include "solver/pd/model.hpp"
+
+namespace pdmpm::io {
+namespace {
+
+int axis_index(const TomlReader& r, const std::string& key, int dim) {
+  const std::string a = r.string(key);
+  const std::string names = dim == 1 ? "x" : dim == 2 ? "x, y" : "x, y, z";
+  if (a.size() == 1 && a[0] >= 'x' && a[0] < 'x' + dim) return a[0] - 'x';
+  r.fail(key, "must be one of " + names + ", got \"" + a + "\"");
+}
+
+ShapeSpec read_shape(const TomlReader& r, int dim) {
+  ShapeSpec s;
+  s.key = r.path();
+  s.type = r.string("type");
+  if (s.type == "rectangle" || s.type == "segment") s.type = "box";
+  if (s.type == "disk" || s.type == "sphere" || s.type == "circle") s.type = "ball";
+  const std::string op = r.optional_string("operation").value_or("add");
+  if (op != "add" && op != "subtract") r.fail("operation", "must be \"add\" or \"subtract\", got \"" + op + "\"");
+  s.subtract = op == "subtract";
+  if (s.type == "box") {
+    s.min = r.numbers("min", dim);
+    s.max = r.numbers("max", dim);
+    for (int a = 0; a < dim; ++a)
+      if (!(s.max[a] >= s.min[a])) r.fail("max", "must be ≥ min in every component (component " + std::to_string(a) + ")");
+  } else if (s.type == "ball") {
+    s.center = r.numbers("center", dim);
+    s.radius = r.positive("radius", r.number("radius"));
+  } else if (s.type == "cylinder") {
+    if (dim != 3) r.fail("type", "cylinder needs dimension = 3 (use \"disk\" in 2D)");
+    s.center = r.numbers("center", dim);
+    s.radius = r.positive("radius", r.number("radius"));
+    s.height = r.positive("height", r.number("height"));
+    s.axis = r.has("axis") ? axis_index(r, "axis", dim) : 2;
+  } else {
+    r.fail("type", "must be one of box (rectangle), ball (disk, sphere), cylinder; got \"" + s.type + "\"");
+  }
+  r.finish();
+  return s;
+}
+
+void check_expression(const TomlReader& r, const std::string& key, const std::string& text) {
+  if (text == "free") return;
+  try {
+    (void)bc::Expression::parse(text);
+  } catch (const bc::ExpressionError& e) {
+    r.fail(key, e.what());
+  }
+}
+
+pd::Setting read_setting(const TomlReader& d, int dim) {
+  if (dim == 1) return pd::Setting::bar1d;
+  if (dim == 3) {
+    if (d.has("plane")) d.fail("plane", "only for dimension = 2");
+    return pd::Setting::solid3d;
+  }
+  const std::string plane = d.string("plane");
+  if (plane == "stress") return pd::Setting::plane_stress;
+  if (plane == "strain") return pd::Setting::plane_strain;
+  d.fail("plane", "must be \"stress\" or \"strain\", got \"" + plane + "\"");
+}
+
+void read_discretization(const TomlReader& d, Scene& s) {
+  s.dimension = static_cast<int>(d.integer("dimension"));
+  if (s.dimension < 1 || s.dimension > 3) d.fail("dimension", "must be 1, 2 or 3, got " + std::to_string(s.dimension));
+  s.setting = read_setting(d, s.dimension);
+  s.spacing = d.positive("spacing", d.number("spacing"));
+  const auto ratio = d.optional_number("horizon_ratio");
+  const auto delta = d.optional_number("horizon");
+  if (ratio.has_value() == delta.has_value())
+    d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
+  s.delta = ratio ? *ratio * s.spacing : *delta;
+  if (ratio) d.in_range("horizon_ratio", *ratio, 1.0, 20.0, false, false);
+  if (s.delta < s.spacing * (1.0 - 1e-12)) d.fail(delta ? "horizon" : "horizon_ratio", "the horizon δ must be ≥ the spacing Δx (δ/Δx ≥ 1)");
+  if (s.delta > 20.0 * s.spacing) d.fail("horizon", "δ/Δx must be ≤ 20 (families would exceed the bond table)");
+  if (s.dimension == 2) {
+    s.measure = d.positive("thickness", d.number("thickness"));
+    if (d.has("area")) d.fail("area", "only for dimension = 1 (2D uses thickness)");
+  } else if (s.dimension == 1) {
+    s.measure = d.positive("area", d.number("area"));
+    if (d.has("thickness")) d.fail("thickness", "only for dimension = 2 (1D uses area)");
+  } else {
+    if (d.has("thickness")) d.fail("thickness", "only for dimension = 2");
+    if (d.has("area")) d.fail("area", "only for dimension = 1");
+  }
+  if (auto pv = d.optional_string("partial_volume")) {
+    auto p = pd::parse_partial_volume(*pv);
+    if (!p) d.fail("partial_volume", "must be one of none, seed001, extended; got \"" + *pv + "\"");
+    s.partial_volume = *p;
+  }
+  s.lattice_origin = d.optional_numbers("lattice_origin", s.dimension);
+  d.finish();
+}
+
+void read_model(const TomlReader& m, Scene& s) {
+  s.model = m.string("type");
+  bool known = false;
+  std::string names;
+  for (const auto& n : pd::model_names()) {
+    known = known || n == s.model;
+    names += (names.empty() ? "" : ", ") + n;
+  }
+  if (!known) m.fail("type", "must be one of " + names + "; got \"" + s.model + "\"");
+  if (auto w = m.optional_string("influence")) {
+    auto inf = pd::parse_influence(*w);
+    if (!inf) m.fail("influence", "must be one of " + pd::influence_names() + "; got \"" + *w + "\"");
+    s.influence = *inf;
+  }
+  s.damage = m.boolean("damage", true);
+  if (auto c = m.optional_table("contact")) {
+    s.contact.enabled = c->boolean("enabled", true);
+    if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
+    if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
+    c->finish();
+  }
+  m.finish();
+}
+
+void read_material(const TomlReader& m, Scene& s) {
+  s.material.rho = m.positive("density", m.number("density"));
+  const auto E = m.optional_number("youngs_modulus");
+  const auto K = m.optional_number("bulk_modulus");
+  if (E.has_value() == K.has_value()) m.fail("youngs_modulus", "give exactly one of youngs_modulus and bulk_modulus");
+  const auto model = pd::make_model<3>(s.model);
+  const auto [lo, hi] = model->poisson_range(s.setting);
+  const auto nu = m.optional_number("poissons_ratio");
+  std::ostringstream fixed;
+  fixed << lo;
+  if (lo == hi) {
+    // The model fixes ν; a given value must agree with it.
+    if (nu && std::abs(*nu - lo) > 1e-9)
+      m.fail("poissons_ratio", "the " + s.model + " model in " + std::string(pd::name(s.setting)) + " has ν = " + fixed.str() + " only; got " + std::to_string(*nu));
+    s.material.nu = lo;
+  } else if (s.setting == pd::Setting::bar1d) {
+    s.material.nu = nu.value_or(0.25);
+  } else {
+    if (!nu) m.fail("poissons_ratio", "missing (required for the " + s.model + " model)");
+    s.material.nu = m.in_range("poissons_ratio", *nu, lo, hi, true, true);
+  }
+  if (E) s.material.E = m.positive("youngs_modulus", *E);
+  else s.material.E = 3.0 * m.positive("bulk_modulus", *K) * (1.0 - 2.0 * s.material.nu);
+  if (!(s.material.E > 0.0)) m.fail("bulk_modulus", "gives E ≤ 0 with this Poisson's ratio");
+  s.critical_stretch = m.optional_number("critical_stretch");
+  s.fracture_energy = m.optional_number("fracture_energy");
+  if (s.critical_stretch && s.fracture_energy) m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
+  if (s.critical_stretch) m.positive("critical_stretch", *s.critical_stretch);
+  if (s.fracture_energy) m.positive("fracture_energy", *s.fracture_energy);
+  m.finish();
+}
+
+void read_time(const TomlReader& t, Scene& s) {
+  const std::string integ = t.optional_string("integrator").value_or("verlet");
+  if (integ == "verlet") s.time.integrator = Integrator::verlet;
+  else if (integ == "adr") s.time.integrator = Integrator::adr;
+  else t.fail("integrator", "must be \"verlet\" (dynamic) or \"adr\" (adaptive dynamic relaxation, quasi-static); got \"" + integ + "\"");
+  s.time.end_time = t.optional_number("end_time");
+  s.time.steps = t.optional_integer("steps");
+  if (s.time.integrator == Integrator::verlet) {
+    if (s.time.end_time.has_value() == s.time.steps.has_value()) t.fail("end_time", "give exactly one of end_time and steps");
+    if (s.time.end_time) t.positive("end_time", *s.time.end_time);
+    if (s.time.steps && *s.time.steps <= 0) t.fail("steps", "must be ≥ 1");
+  } else {
+    if (s.time.end_time) t.fail("end_time", "not used by the adr integrator (use max_steps and tolerance)");
+    if (s.time.steps) t.fail("steps", "not used by the adr integrator (use max_steps)");
+  }
+  s.time.dt = t.optional_number("dt");
+  if (s.time.dt) t.positive("dt", *s.time.dt);
+  if (auto f = t.optional_number("safety_factor")) s.time.safety_factor = t.in_range("safety_factor", *f, 0.0, 2.0, true, false);
+  if (s.time.dt && t.has("safety_factor")) t.fail("safety_factor", "give either dt or safety_factor, not both");
+  if (auto e = t.optional_string("stable_step")) {
+    if (*e == "silling_askari") s.time.estimate = StableStepEstimate::silling_askari;
+    else if (*e == "power_iteration") s.time.estimate = StableStepEstimate::power_iteration;
+    else t.fail("stable_step", "must be \"silling_askari\" or \"power_iteration\"; got \"" + *e + "\"");
+  }
+  if (auto v = t.optional_number("tolerance")) s.time.tolerance = t.in_range("tolerance", *v, 0.0, 1.0, true, true);
+  if (auto v = t.optional_integer("max_steps")) {
+    if (*v <= 0) t.fail("max_steps", "must be ≥ 1");
+    s.time.max_steps = *v;
+  }
+  if (auto v = t.optional_integer("load_steps")) {
+    if (s.time.integrator != Integrator::adr) t.fail("load_steps", "only for integrator = \"adr\"");
+    if (*v < 1) t.fail("load_steps", "must be ≥ 1");
+    s.time.load_steps = *v;
+  }
+  if (auto v = t.optional_number("energy_growth_limit")) s.time.energy_growth_limit = t.in_range("energy_growth_limit", *v, 1.0, 1e12, true, false);
+  t.finish();
+}
+
+void read_boundaries(const TomlReader& root, Scene& s) {
+  const auto list = root.tables("boundary");
+  for (std::size_t k = 0; k < list.size(); ++k) {
+    const TomlReader& b = list[k];
+    BoundarySpec spec;
+    spec.key = b.path();
+    spec.name = b.optional_string("name").value_or("boundary" + std::to_string(k));
+    if (!std::regex_match(spec.name, std::regex("[A-Za-z0-9_]+"))) b.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
+    const std::string kind = b.string("kind");
+    if (kind == "fixed") spec.kind = BoundaryKind::fixed;
+    else if (kind == "displacement") spec.kind = BoundaryKind::displacement;
+    else if (kind == "velocity") spec.kind = BoundaryKind::velocity;
+    else if (kind == "traction") spec.kind = BoundaryKind::traction;
+    else if (kind == "analytic") spec.kind = BoundaryKind::analytic;
+    else b.fail("kind", "must be one of fixed, displacement, velocity, traction, analytic; got \"" + kind + "\"");
+    for (const auto& shape : b.table_or_tables("region")) spec.region.push_back(read_shape(shape, s.dimension));
+    const auto value = b.optional_expressions("value", s.dimension);
+    const bool needs_value = spec.kind == BoundaryKind::displacement || spec.kind == BoundaryKind::velocity ||
+                             spec.kind == BoundaryKind::traction;
+    if (needs_value && !value) b.fail("value", "missing (required for kind = \"" + kind + "\"): one expression per component");
+    if (!needs_value && value) b.fail("value", "not used by kind = \"" + kind + "\"");
+    if (value) {
+      if (value->size() != static_cast<std::size_t>(s.dimension))
+        b.fail("value", "must be a list of " + std::to_string(s.dimension) + " components");
+      for (const auto& v : *value) check_expression(b, "value", v);
+      spec.value = *value;
+    }
+    if (auto layer = b.optional_number("layer")) {
+      if (spec.kind != BoundaryKind::traction) b.fail("layer", "only for kind = \"traction\"");
+      spec.layer = b.positive("layer", *layer);
+    }
+    if (spec.kind == BoundaryKind::analytic) {
+      spec.callback = b.string("callback");
+      const auto names = bc::analytic_field_names();
+      if (std::find(names.begin(), names.end(), spec.callback) == names.end()) {
+        std::string all;
+        for (const auto& n : names) all += (all.empty() ? "" : ", ") + n;
+        b.fail("callback", "must be one of " + all + "; got \"" + spec.callback + "\"");
+      }
+      if (auto p = b.optional_table("parameters")) {
+        for (const auto& key : p->keys()) spec.parameters[key] = p->number(key);
+        p->finish();
+      }
+      try {
+        bc::check_analytic_parameters(spec.callback, spec.parameters);
+      } catch (const std::invalid_argument& e) {
+        b.fail("parameters", e.what());
+      }
+    } else if (b.has("callback") || b.has("parameters")) {
+      b.fail(b.has("callback") ? "callback" : "parameters", "only for kind = \"analytic\"");
+    }
+    b.finish();
+    s.boundaries.push_back(std::move(spec));
+  }
+}
+
+void read_geometry(const TomlReader& root, Scene& s) {
+  for (const auto& t : root.tables("shape")) s.shapes.push_back(read_shape(t, s.dimension));
+  if (s.shapes.empty()) root.fail("shape", "missing: at least one [[shape]] is required");
+  if (s.shapes.front().subtract) root.fail("shape[0].operation", "the first shape must add material");
+
+  for (const auto& t : root.tables("symmetry")) {
+    SymmetrySpec sym{t.path(), axis_index(t, "axis", s.dimension), t.number("position")};
+    t.finish();
+    s.symmetries.push_back(sym);
+  }
+  for (const auto& t : root.tables("precrack")) {
+    PrecrackSpec pc;
+    pc.key = t.path();
+    if (s.dimension == 2) {
+      pc.points = {t.numbers("from", 2), t.numbers("to", 2)};
+      if (pc.points[0] == pc.points[1]) t.fail("to", "must differ from 'from' (a crack needs a length)");
+    } else if (s.dimension == 3) {
+      const std::vector<std::string> keys{"corner0", "corner1", "corner2"};
+      for (const auto& k : keys) pc.points.push_back(t.numbers(k, 3));
+    } else {
+      t.fail("", "pre-cracks need dimension 2 (segment) or 3 (parallelogram)");
+    }
+    t.finish();
+    s.precracks.push_back(pc);
+  }
+}
+
+void read_loads(const TomlReader& root, Scene& s) {
+  if (auto bf = root.optional_table("body_force")) {
+    auto v = bf->optional_expressions("density", s.dimension);
+    if (!v || v->size() != static_cast<std::size_t>(s.dimension)) bf->fail("density", "missing: a list of " + std::to_string(s.dimension) + " force densities (N/m³)");
+    for (const auto& e : *v) {
+      if (e == "free") bf->fail("density", "\"free\" is not a force");
+      check_expression(*bf, "density", e);
+    }
+    s.body_force = *v;
+    bf->finish();
+  }
+  if (auto ind = root.optional_table("indenter")) {
+    IndenterSpec spec;
+    spec.center = ind->numbers("center", s.dimension);
+    spec.velocity = ind->numbers("velocity", s.dimension);
+    spec.radius = ind->positive("radius", ind->number("radius"));
+    spec.stiffness = ind->positive("stiffness", ind->number("stiffness"));
+    ind->finish();
+    s.indenter = spec;
+  }
+  for (const auto& t : root.tables("probe")) {
+    ProbeSpec p{t.string("name"), t.numbers("point", s.dimension)};
+    if (!std::regex_match(p.name, std::regex("[A-Za-z0-9_]+"))) t.fail("name", "must be letters, digits and _ only");
+    t.finish();
+    s.probes.push_back(p);
+  }
+}
+
+void read_output(const TomlReader& o, Scene& s) {
+  s.output.frames = o.optional_integer("frames");
+  s.output.every = o.optional_integer("every");
+  if (s.output.frames && s.output.every) o.fail("frames", "give at most one of frames and every");
+  if (s.output.frames && *s.output.frames < 1) o.fail("frames", "must be ≥ 1");
+  if (s.output.every && *s.output.every < 1) o.fail("every", "must be ≥ 1");
+  s.output.history_every = o.optional_integer("history_every");
+  if (s.output.history_every && *s.output.history_every < 1) o.fail("history_every", "must be ≥ 1");
+  s.output.fields = field_names();
+  if (o.has("fields")) {
+    s.output.fields = o.strings("fields");
+    for (const auto& f : s.output.fields)
+      if (std::find(field_names().begin(), field_names().end(), f) == field_names().end())
+        o.fail("fields", "unknown field \"" + f + "\"; allowed: displacement, velocity, damage, dilatation, stress, von_mises");
+  }
+  o.finish();
+}
+
+}  // namespace
+
+const std::vector<std::string>& field_names() {
+  static const std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
+  return names;
+}
+
+Scene parse_scene_text(const std::string& text, const std::string& file_label) {
+  toml::table raw;
+  try {
+    raw = toml::parse(text, file_label);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream msg;
+    msg << "not valid TOML at line " << e.source().begin.line << ", column " << e.source().begin.column << ": "
+        << e.description();
+    throw InputError(file_label, "", msg.str());
+  }
+  TomlReader root(raw, file_label, "");
+  Scene s;
+  s.file = file_label;
+
+  const TomlReader head = root.table("scene");
+  s.id = head.string("id");
+  if (!std::regex_match(s.id, std::regex("[A-Za-z0-9_.-]+"))) head.fail("id", "must be letters, digits, '_', '-' or '.' only");
+  s.description = head.optional_string("description").value_or("");
+  head.finish();
+
+  read_discretization(root.table("discretization"), s);
+  read_model(root.table("model"), s);
+  read_material(root.table("material"), s);
+  if (s.damage && !s.critical_stretch && !s.fracture_energy && root.table("model").has("damage"))
+    root.fail("model.damage", "damage = true needs material.critical_stretch or material.fracture_energy");
+  s.damage = s.damage && (s.critical_stretch || s.fracture_energy);
+  read_geometry(root, s);
+  read_time(root.table("time"), s);
+  read_boundaries(root, s);
+  read_loads(root, s);
+  if (auto o = root.optional_table("output")) read_output(*o, s);
+  else s.output.fields = field_names();
+  root.finish();
+  return s;
+}
+
+Scene parse_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the scene file");
+  std::ostringstream buf;
+  buf << in.rdbuf();
+  return parse_scene_text(buf.str(), path);
+}
+
+}  // namespace pdmpm::io

@@ -1,0 +1,27 @@
+#pragma once
+// Local damage φ_i = 1 − Σ_j μ_ij V_j / Σ_j V_j over the family (seed 001 eq 10.2).
+#include <vector>
+
+#include "solver/pd/system.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+std::vector<double> local_damage(const System<D>& sys) {
+  const auto& fam = sys.families;
+  const auto& p = sys.particles;
+  std::vector<double> phi(p.n_real, 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < p.n_real; ++i) {
+    double all = 0.0, intact = 0.0;
+    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
+      const double V = p.volume[fam.neighbor[b]];
+      all += V;
+      if (!sys.broken[b]) intact += V;
+    }
+    phi[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
+  }
+  return phi;
+}
+
+}  // namespace pdmpm::pd

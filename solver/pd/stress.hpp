@@ -1,0 +1,20 @@
+#pragma once
+// Stress output (SPEC §3): non-local deformation gradient from intact bonds,
+//   F − I = (Σ ω β η⊗ξ V_j)(Σ ω β ξ⊗ξ V_j)⁻¹,
+// small strain ε = sym(F − I) and Hooke's law for the setting. Written as the
+// 3D tensor (xx, yy, zz, xy, yz, xz) so every dimension shares one format.
+#include <array>
+#include <vector>
+
+#include "solver/pd/system.hpp"
+
+namespace pdmpm::pd {
+
+using Tensor6 = std::array<double, 6>;
+
+template <int D>
+std::vector<Tensor6> particle_stress(const System<D>& sys);
+
+double von_mises(const Tensor6& s);
+
+}  // namespace pdmpm::pd

@@ -1,0 +1,40 @@
+#include "solver/sim/geometry_from_scene.hpp"
+
+namespace pdmpm::sim {
+
+template <int D>
+core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes) {
+  core::Geometry<D> g;
+  for (const auto& s : shapes) {
+    std::unique_ptr<core::Shape<D>> shape;
+    if (s.type == "box") {
+      shape = std::make_unique<core::Box<D>>(to_vec<D>(s.min), to_vec<D>(s.max));
+    } else if (s.type == "ball") {
+      shape = std::make_unique<core::Ball<D>>(to_vec<D>(s.center), s.radius);
+    } else if constexpr (D == 3) {
+      shape = std::make_unique<core::Cylinder>(to_vec<3>(s.center), s.axis, s.radius, s.height);
+    }
+    if (s.subtract) g.subtract(std::move(shape));
+    else g.add(std::move(shape));
+  }
+  return g;
+}
+
+template <int D>
+std::vector<Index> select_particles(const std::vector<Vec<D>>& x0, Index n_real, const core::Geometry<D>& region,
+                                    double spacing) {
+  std::vector<Index> out;
+  const double tol = 1e-9 * spacing;  // the same closed-boundary rule as the lattice fill
+  for (Index i = 0; i < n_real; ++i)
+    if (region.contains(x0[i], tol)) out.push_back(i);
+  return out;
+}
+
+template core::Geometry<1> make_geometry<1>(const std::vector<io::ShapeSpec>&);
+template core::Geometry<2> make_geometry<2>(const std::vector<io::ShapeSpec>&);
+template core::Geometry<3> make_geometry<3>(const std::vector<io::ShapeSpec>&);
+template std::vector<Index> select_particles<1>(const std::vector<Vec<1>>&, Index, const core::Geometry<1>&, double);
+template std::vector<Index> select_particles<2>(const std::vector<Vec<2>>&, Index, const core::Geometry<2>&, double);
+template std::vector<Index> select_particles<3>(const std::vector<Vec<3>>&, Index, const core::Geometry<3>&, double);
+
+}  // namespace pdmpm::sim

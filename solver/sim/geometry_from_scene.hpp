@@ -1,0 +1,25 @@
+#pragma once
+// Turns scene shape specifications into core geometry.
+#include <vector>
+
+#include "solver/core/shapes.hpp"
+#include "solver/io/scene.hpp"
+
+namespace pdmpm::sim {
+
+template <int D>
+core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes);
+
+// Real particles whose reference position lies in the region (boundaries included).
+template <int D>
+std::vector<Index> select_particles(const std::vector<Vec<D>>& x0, Index n_real, const core::Geometry<D>& region,
+                                    double spacing);
+
+template <int D>
+Vec<D> to_vec(const std::vector<double>& v) {
+  Vec<D> out;
+  for (int a = 0; a < D; ++a) out[a] = v[a];
+  return out;
+}
+
+}  // namespace pdmpm::sim

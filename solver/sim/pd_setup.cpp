@@ -1,0 +1,143 @@
+#include "solver/sim/pd_setup.hpp"
+
+#include <cmath>
+
+#include "solver/bc/symmetry.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/particle_builder.hpp"
+#include "solver/pd/constants.hpp"
+#include "solver/pd/precrack.hpp"
+#include "solver/sim/geometry_from_scene.hpp"
+
+namespace pdmpm::sim {
+namespace {
+
+template <int D>
+core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g) {
+  core::Lattice<D> lat;
+  lat.spacing = s.spacing;
+  // Default: cell-centred sites, the first half a spacing inside the body's
+  // lower corner (N sites across a length N Δx).
+  lat.origin = s.lattice_origin ? to_vec<D>(*s.lattice_origin) : Vec<D>(g.bounds().min + Vec<D>::Constant(0.5 * s.spacing));
+  return lat;
+}
+
+template <int D>
+void add_constraint(const io::Scene& s, const io::BoundarySpec& b, std::vector<Index> particles, PdSetup<D>& out) {
+  bc::Constraint<D> c;
+  c.name = b.name;
+  c.particles = std::move(particles);
+  switch (b.kind) {
+    case io::BoundaryKind::fixed: c.kind = bc::ConstraintKind::fixed; break;
+    case io::BoundaryKind::displacement: c.kind = bc::ConstraintKind::displacement; break;
+    case io::BoundaryKind::velocity: c.kind = bc::ConstraintKind::velocity; break;
+    case io::BoundaryKind::analytic: c.kind = bc::ConstraintKind::analytic; break;
+    case io::BoundaryKind::traction: break;
+  }
+  for (int a = 0; a < D; ++a) {
+    const bool fully = b.kind == io::BoundaryKind::fixed || b.kind == io::BoundaryKind::analytic;
+    c.active[a] = fully || b.value[a] != "free";
+    if (!fully && c.active[a]) c.value[a] = bc::Expression::parse(b.value[a]);
+  }
+  if (b.kind == io::BoundaryKind::analytic)
+    c.field = bc::make_analytic_field<D>(b.callback, b.parameters, s.material, s.setting);
+  out.boundaries.constraints.push_back(std::move(c));
+}
+
+}  // namespace
+
+template <int D>
+PdSetup<D> build_pd(const io::Scene& s) {
+  PdSetup<D> out;
+  auto& sys = out.system;
+  const auto geometry = make_geometry<D>(s.shapes);
+  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
+  sys.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
+  if (sys.particles.n_real == 0)
+    throw InputError(s.file, "shape", "the shapes contain no lattice site: check their extents against discretization.spacing");
+
+  sys.setting = s.setting;
+  sys.material = s.material;
+  sys.delta = s.delta;
+  sys.measure = D == 3 ? 1.0 : s.measure;
+  sys.influence = s.influence;
+  sys.partial_volume = s.partial_volume;
+
+  std::vector<bc::SymmetryPlane> planes;
+  for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
+  bc::add_symmetry_ghosts<D>(sys.particles, planes, pd::family_ratio(s.partial_volume, s.delta, s.spacing) * s.spacing,
+                             s.file);
+  sys.connect();
+
+  for (const auto& pc : s.precracks) {
+    pd::CrackSurface<D> crack;
+    for (const auto& pt : pc.points) crack.points.push_back(to_vec<D>(pt));
+    const auto cut = pd::cut_bonds<D>(sys, crack);
+    if (cut == 0) throw InputError(s.file, pc.key, "this pre-crack cuts no bond: it lies outside the body");
+    out.precrack_cut += cut;
+  }
+
+  out.model = pd::make_model<D>(s.model);
+  out.model->initialise(sys);
+  out.damage = s.damage;
+  if (s.damage)
+    out.critical_stretch = s.critical_stretch ? *s.critical_stretch
+                                              : pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy,
+                                                                     s.delta, sys.measure);
+
+  for (const auto& b : s.boundaries) {
+    auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(b.region), s.spacing);
+    if (selected.empty())
+      throw InputError(s.file, b.key + ".region", "selects no particle (particles sit on lattice sites; check the region against the body)");
+    if (b.kind == io::BoundaryKind::traction) {
+      bc::Traction<D> t;
+      t.name = b.name;
+      t.particles = std::move(selected);
+      for (int a = 0; a < D; ++a) {
+        if (b.value[a] == "free") throw InputError(s.file, b.key + ".value", "a traction component cannot be \"free\" (use 0)");
+        t.value[a] = bc::Expression::parse(b.value[a]);
+      }
+      t.layer = b.layer > 0.0 ? b.layer : s.spacing;
+      out.boundaries.tractions.push_back(std::move(t));
+    } else {
+      add_constraint<D>(s, b, std::move(selected), out);
+    }
+  }
+  out.boundaries.finalise(sys.particles.n_real);
+
+  if (!s.body_force.empty()) {
+    out.has_body_force = true;
+    for (int a = 0; a < D; ++a) out.body_force[a] = bc::Expression::parse(s.body_force[a]);
+  }
+  if (s.indenter) {
+    bc::Indenter<D> ind;
+    ind.center0 = to_vec<D>(s.indenter->center);
+    ind.velocity = to_vec<D>(s.indenter->velocity);
+    ind.radius = s.indenter->radius;
+    ind.stiffness = s.indenter->stiffness;
+    out.indenter = ind;
+  }
+  if (s.contact.enabled) {
+    const double c = pd::pmb_micromodulus(pd::Influence::constant, s.setting, s.material, s.delta, sys.measure);
+    out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor, s.contact.max_distance}, c);
+  }
+  for (std::size_t k = 0; k < s.probes.size(); ++k) {
+    const Vec<D> x = to_vec<D>(s.probes[k].point);
+    Index best = -1;
+    double dist = 1e300;
+    for (Index i = 0; i < sys.particles.n_real; ++i) {
+      const double d = (sys.particles.x0[i] - x).norm();
+      if (d < dist) dist = d, best = i;
+    }
+    if (dist > s.spacing * std::sqrt(static_cast<double>(D)))
+      throw InputError(s.file, "probe[" + std::to_string(k) + "].point", "is not inside the body (no particle within √D Δx)");
+    out.probes.push_back({s.probes[k].name, best});
+  }
+  return out;
+}
+
+template PdSetup<1> build_pd<1>(const io::Scene&);
+template PdSetup<2> build_pd<2>(const io::Scene&);
+template PdSetup<3> build_pd<3>(const io::Scene&);
+
+}  // namespace pdmpm::sim

@@ -1,0 +1,44 @@
+#pragma once
+// Everything a PD run needs, built from a validated scene: particles (with
+// symmetry ghosts), families, pre-cracks, the force model, boundary conditions,
+// loads, contact and probes. All user-facing checks that need the particles
+// (empty body, empty regions, probes outside the body) happen here, before any
+// output is written.
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "solver/bc/boundary.hpp"
+#include "solver/bc/indenter.hpp"
+#include "solver/io/scene.hpp"
+#include "solver/pd/contact.hpp"
+#include "solver/pd/model.hpp"
+
+namespace pdmpm::sim {
+
+template <int D>
+struct Probe {
+  std::string name;
+  Index particle = -1;
+};
+
+template <int D>
+struct PdSetup {
+  pd::System<D> system;
+  std::unique_ptr<pd::Model<D>> model;
+  bc::Boundaries<D> boundaries;
+  std::array<bc::Expression, D> body_force;
+  bool has_body_force = false;
+  std::optional<bc::Indenter<D>> indenter;
+  std::optional<pd::ShortRangeContact<D>> contact;
+  std::vector<Probe<D>> probes;
+  double critical_stretch = 0.0;  // 0 when damage is off
+  bool damage = false;
+  std::int64_t precrack_cut = 0;  // bond sides cut by pre-cracks
+};
+
+template <int D>
+PdSetup<D> build_pd(const io::Scene& scene);
+
+}  // namespace pdmpm::sim

@@ -1,0 +1,27 @@
+#include "solver/sim/run.hpp"
+
+#include <omp.h>
+
+#include "solver/sim/pd_run.hpp"
+
+namespace pdmpm::sim {
+namespace {
+
+template <int D>
+RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
+  auto setup = build_pd<D>(scene);
+  return run_pd<D>(scene, setup, options);
+}
+
+}  // namespace
+
+RunResult run_scene(const io::Scene& scene, const RunOptions& options) {
+  if (options.threads > 0) omp_set_num_threads(options.threads);
+  switch (scene.dimension) {
+    case 1: return run_dim<1>(scene, options);
+    case 2: return run_dim<2>(scene, options);
+    default: return run_dim<3>(scene, options);
+  }
+}
+
+}  // namespace pdmpm::sim
