@@ -8,6 +8,8 @@
 //   /frames/<step %08d>/   attributes time (double), step (int64), particles (int64)
 //       position           n x 3 doubles (current positions; unused axes are 0)
 //       <field>            n (scalar), n x 3 (vector) or n x 6 (tensor6: xx, yy, zz, xy, yz, xz)
+//   tensor6 order: XDMF names no order for Tensor6; ParaView hands the six
+//   components to VTK, whose symmetric-tensor convention is this one.
 //   /topology/polyvertex_<n>   n x 1 int32 = 0..n-1, one per distinct particle count
 // The explicit vertex list exists because the XDMF 3 library counts Polyvertex
 // elements from the connectivity it reads; without one a reader sees no cells.
