@@ -9,6 +9,7 @@
 #include <limits>
 #include <sstream>
 
+#include "solver/core/error.hpp"
 #include "solver/io/fields_writer.hpp"
 #include "solver/io/history_writer.hpp"
 #include "solver/io/output_directory.hpp"
@@ -548,7 +549,7 @@ RunResult PdRun<D>::run() {
   start_outputs();
   if (scene_.time.integrator == io::Integrator::verlet) verlet();
   else adr();
-  if (progress_) progress_->finish(steps_done_, steps_done_ * dt_, broken_sides_ / 2);
+  if (progress_) progress_->finish(steps_done_, static_cast<double>(steps_done_) * dt_, broken_sides_ / 2);
   if (fields_) fields_->close();
   history_.reset();
 

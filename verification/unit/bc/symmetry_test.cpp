@@ -37,7 +37,9 @@ TEST(Symmetry, OctantGhostsCompleteTheFamiliesNearThePlanes) {
   p.u[5] = Vec<3>(1, 2, 3);
   p.update_ghosts();
   for (Index g = 0; g < p.n_ghost(); ++g)
-    if (p.ghost_owner[g] == 5) EXPECT_EQ(p.u[n + g], p.u[5].cwiseProduct(p.ghost_sign[g]));
+    if (p.ghost_owner[g] == 5) {
+      EXPECT_EQ(p.u[n + g], p.u[5].cwiseProduct(p.ghost_sign[g]));
+    }
 }
 
 TEST(Symmetry, HalfSpacingPlaneIsAllowedAndOffLatticePlaneIsNot) {

@@ -21,7 +21,9 @@ TEST(CellList, FindsEveryPointWithinOneCell) {
     std::set<Index> near;
     cl.for_each_near(pts[i], [&](Index j) { near.insert(j); });
     for (std::size_t j = 0; j < pts.size(); ++j)
-      if ((pts[j] - pts[i]).norm() < h) EXPECT_TRUE(near.count(static_cast<Index>(j)));
+      if ((pts[j] - pts[i]).norm() < h) {
+        EXPECT_TRUE(near.count(static_cast<Index>(j)));
+      }
   }
 }
 

@@ -51,7 +51,9 @@ TEST(Pmb, BondsBreakOnBothSidesAtTheSameStep) {
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
       const Index j = sys.families.neighbor[b];
       for (BondIndex c = sys.families.begin(j); c < sys.families.end(j); ++c)
-        if (sys.families.neighbor[c] == i) EXPECT_EQ(sys.broken[b], sys.broken[c]);
+        if (sys.families.neighbor[c] == i) {
+          EXPECT_EQ(sys.broken[b], sys.broken[c]);
+        }
     }
 }
 
