@@ -1,0 +1,67 @@
+// Partial-volume factor β (SPEC §1, seed 001 eq 7.2) at the ends and middle of
+// the ramp for each option, and the family radius each option needs.
+#include "solver/pd/partial_volume.hpp"
+
+#include <gtest/gtest.h>
+
+namespace pdmpm::pd {
+namespace {
+
+constexpr double dx = 1e-3;
+constexpr double delta = 3.015e-3;
+
+struct Row {
+  double r;                        // bond length
+  double none, seed001, extended;  // expected β
+};
+
+TEST(PartialVolume, RampEndsAndMiddle) {
+  const Row rows[] = {
+      {0.5 * delta, 1.0, 1.0, 1.0},                                  // well inside
+      {delta - 0.5 * dx, 1.0, 1.0, 1.0},                             // inner end of the ramp
+      {delta - 0.25 * dx, 1.0, 0.75, 0.75}, {delta, 1.0, 0.5, 0.5},  // middle of the full ramp, end of seed001's
+      {delta + 0.25 * dx, 0.0, 0.0, 0.25},  {delta + 0.5 * dx, 0.0, 0.0, 0.0},  // outer end of the extended ramp
+      {delta + 0.75 * dx, 0.0, 0.0, 0.0},
+  };
+  for (const auto& row : rows) {
+    SCOPED_TRACE("r = " + std::to_string(row.r));
+    EXPECT_NEAR(partial_volume(PartialVolume::none, row.r, delta, dx), row.none, 1e-12);
+    EXPECT_NEAR(partial_volume(PartialVolume::seed001, row.r, delta, dx), row.seed001, 1e-12);
+    EXPECT_NEAR(partial_volume(PartialVolume::extended, row.r, delta, dx), row.extended, 1e-12);
+  }
+}
+
+TEST(PartialVolume, BondAtTheHorizonWithinRoundingIsKept) {
+  // δ computed as m·Δx may sit one ulp below a lattice distance; the stencil
+  // admits such a bond (slack 1e-10), so β must not drop it either.
+  const double r = delta * (1.0 + 1e-12);
+  EXPECT_NEAR(partial_volume(PartialVolume::none, r, delta, dx), 1.0, 1e-12);
+  EXPECT_NEAR(partial_volume(PartialVolume::seed001, r, delta, dx), 0.5, 1e-8);
+  EXPECT_NEAR(partial_volume(PartialVolume::extended, r, delta, dx), 0.5, 1e-8);
+}
+
+TEST(PartialVolume, FamilyRatio) {
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::none, delta, dx), 3.015);
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::seed001, delta, dx), 3.015);
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::extended, delta, dx), 3.515);
+}
+
+TEST(PartialVolume, ZeroBeyondTheFamilyRadius) {
+  for (PartialVolume pv : {PartialVolume::none, PartialVolume::seed001, PartialVolume::extended}) {
+    const double reach = family_ratio(pv, delta, dx) * dx;
+    EXPECT_EQ(partial_volume(pv, reach * (1.0 + 1e-6), delta, dx), 0.0) << name(pv);
+  }
+}
+
+TEST(PartialVolume, NamesRoundTrip) {
+  for (PartialVolume pv : {PartialVolume::none, PartialVolume::seed001, PartialVolume::extended}) {
+    const auto parsed = parse_partial_volume(name(pv));
+    ASSERT_TRUE(parsed.has_value());
+    EXPECT_EQ(*parsed, pv);
+  }
+  EXPECT_FALSE(parse_partial_volume("seed_001").has_value());
+  EXPECT_FALSE(parse_partial_volume("").has_value());
+}
+
+}  // namespace
+}  // namespace pdmpm::pd
