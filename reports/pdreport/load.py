@@ -529,9 +529,12 @@ def load_results(root: Path, problems_dir: Path) -> Results:
                 results.gates.append(Gate(id=gid, file=shown, status=MISSING, problem=p.id, message=message))
                 issue(MISSING, shown, message)
                 seen.add(gid)
+    listed_in = {gid: p.id for p in problems.values() for gid in p.expected_gates}
     for gate in results.gates:
-        if gate.problem:
-            problem(gate.problem).gates.append(gate)
+        # A gate file too broken to name its problem still shows in the problem that lists it.
+        owner = gate.problem or listed_in.get(gate.id)
+        if owner:
+            problem(owner).gates.append(gate)
 
     # Evidence
     data = root / "data"

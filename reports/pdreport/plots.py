@@ -56,7 +56,7 @@ def plot_png(spec: dict) -> tuple[str, list[str]]:
     notes = []
     xlog = spec.get("xscale") == "log"
     ylog = spec.get("yscale") == "log"
-    fig = Figure(figsize=(7.6, 4.3), dpi=110, layout="constrained")
+    fig = Figure(figsize=(9.0, 4.8), dpi=110, layout="constrained")
     ax = fig.subplots()
     labelled = False
     all_x, all_y = [], []

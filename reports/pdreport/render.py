@@ -29,8 +29,10 @@ def render_plots(results: Results) -> None:
                     results.issues.append(Issue(MALFORMED, item.path, item.message))
 
 
-def anchor(problem_id: str) -> str:
-    return "p-" + re.sub(r"[^A-Za-z0-9_.-]", "-", problem_id)
+def anchor(name: str) -> str:
+    """An HTML id for a problem section ("p-<id>") or an evidence item ("e-...")."""
+    name = name if name.startswith("e-") else "p-" + name
+    return re.sub(r"[^A-Za-z0-9_.-]", "-", name)
 
 
 def breakable(name: str) -> Markup:
@@ -62,7 +64,7 @@ def summary_line(s: dict) -> str:
     if s["sections_missing"]:
         line += f"; {s['sections_missing']} problem section(s) without results"
     if s["issues"]:
-        line += f"; {s['issues']} problem(s) reading results"
+        line += f"; {s['issues']} issue(s) with result files"
     return line
 
 
@@ -75,7 +77,8 @@ def _environment() -> jinja2.Environment:
         lstrip_blocks=True,
     )
     env.filters.update(num=numfmt.num, sortkey=numfmt.sort_key, rate=numfmt.rate,
-                       duration=numfmt.duration, anchor=anchor, breakable=breakable)
+                       duration=numfmt.duration, anchor=anchor, breakable=breakable,
+                       count=lambda n, word: f"{n} {word}{'' if n == 1 else 's'}")
     env.globals.update(PASS=PASS, FAIL=FAIL, MALFORMED=MALFORMED, MISSING=MISSING, OK=OK)
     return env
 
