@@ -324,6 +324,35 @@ class AtomicWrite(ReportTestCase):
         self.assertEqual(self.out.read_text(), "<html>new</html>")
 
 
+CHROMIUM = Path("/usr/bin/chromium")
+
+
+@unittest.skipUnless(CHROMIUM.exists(), "needs Debian's chromium to run the page's inline script")
+class SortingInBrowser(ReportTestCase):
+    def test_clicking_a_column_head_sorts_numerically(self):
+        self.run_report()
+        probe = self.tmp / "probe.html"
+        probe.write_text(self.out.read_text() + """<script>
+var table = document.querySelector("table.gates");
+var head = table.tHead.rows[0].cells[2];   // Measured
+function column() { return Array.from(table.tBodies[0].rows).map(r => r.cells[2].getAttribute("data-sort")).join(","); }
+head.click(); var up = column(); head.click(); var down = column();
+document.body.setAttribute("data-probe", up + "|" + down);
+</script>""")
+        profile = self.tmp / "profile"
+        proc = subprocess.run(
+            [str(CHROMIUM), "--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+             "--disable-background-networking", "--disable-component-update", "--disable-sync",
+             f"--user-data-dir={profile}", "--dump-dom", probe.as_uri()],
+            capture_output=True, text=True, timeout=120)
+        found = re.search(r'data-probe="([^"]*)"', proc.stdout)
+        self.assertIsNotNone(found, "the inline script did not run")
+        up, down = found.group(1).split("|")
+        values = [float(v) for v in up.split(",")]
+        self.assertEqual(values, sorted(values))
+        self.assertEqual(down.split(","), up.split(",")[::-1])
+
+
 class NumberFormatting(unittest.TestCase):
     def test_significant_digits_and_scientific_notation(self):
         cases = {0.0336: "0.0336", 3.015: "3.015", 1 / 3: "0.3333", 200e9: "2×10<sup>11</sup>",
