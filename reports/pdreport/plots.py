@@ -4,6 +4,7 @@ from __future__ import annotations
 import base64
 import io
 import math
+import warnings
 
 import matplotlib
 
@@ -52,45 +53,64 @@ def _label_short_log_axis(axis, values: list[float]) -> None:
 
 
 def plot_png(spec: dict) -> tuple[str, list[str]]:
-    """Render a checked "plot" item; returns (data: URI, notes for the reader)."""
+    """Render a checked "plot" item; returns (data: URI, notes for the reader).
+    matplotlib's warnings (odd data) become notes under the plot instead of stderr noise."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        uri, notes = _draw(spec)
+    for w in caught:
+        note = f"matplotlib: {w.message}"
+        if note not in notes:
+            notes.append(note)
+    return uri, notes
+
+
+def _draw(spec: dict) -> tuple[str, list[str]]:
     notes = []
-    xlog = spec.get("xscale") == "log"
-    ylog = spec.get("yscale") == "log"
+    series = [(s, [_value(v) for v in s["x"]], [_value(v) for v in s["y"]]) for s in spec["series"]]
+    log = {}
+    for axis in ("x", "y"):
+        log[axis] = spec.get(f"{axis}scale") == "log"
+        values = [v for _, xs, ys in series for v in (xs if axis == "x" else ys)]
+        if log[axis] and not any(v > 0 and math.isfinite(v) for v in values):
+            notes.append(f"no positive {axis} values: drawn on a linear {axis} axis instead of log.")
+            log[axis] = False
+
     fig = Figure(figsize=(9.0, 4.8), dpi=110, layout="constrained")
     ax = fig.subplots()
     labelled = False
-    all_x, all_y = [], []
-    for s in spec["series"]:
-        xs, ys, hidden = [], [], 0
-        for x, y in zip(s["x"], s["y"]):
-            x, y = _value(x), _value(y)
+    shown_x, shown_y = [], []
+    for s, xs, ys in series:
+        hidden = 0
+        for i, (x, y) in enumerate(zip(xs, ys)):
             # A log axis cannot show values ≤ 0; leave a gap and say so below the plot.
-            if (xlog and x <= 0) or (ylog and y <= 0):
+            if (log["x"] and x <= 0) or (log["y"] and y <= 0):
                 hidden += 1
-                x = y = math.nan
-            xs.append(x)
-            ys.append(y)
-        all_x += xs
-        all_y += ys
+                xs[i] = ys[i] = math.nan
+        shown_x += xs
+        shown_y += ys
         label = s.get("label") or None
         labelled |= label is not None
         ax.plot(xs, ys, label=label, **_STYLE[s.get("style", "line")])
-        if hidden:
+        if not any(math.isfinite(x) and math.isfinite(y) for x, y in zip(xs, ys)):
+            notes.append(f"series “{label or '?'}” has no point to show.")
+        elif hidden:
             notes.append(f"{hidden} point(s) of series “{label or '?'}” are ≤ 0 and not shown on the log axis.")
-    if xlog:
+    if log["x"]:
         ax.set_xscale("log")
-        _label_short_log_axis(ax.xaxis, all_x)
-    if ylog:
+        _label_short_log_axis(ax.xaxis, shown_x)
+    if log["y"]:
         ax.set_yscale("log")
-        _label_short_log_axis(ax.yaxis, all_y)
-    if not (xlog and ylog):
+        _label_short_log_axis(ax.yaxis, shown_y)
+    linear = [a for a in ("x", "y") if not log[a]]
+    if linear:
         # Linear axes: 1e-4 as "1" with a ×10⁻⁴ offset, not as 0.000100.
-        ax.ticklabel_format(axis="both" if not (xlog or ylog) else ("y" if xlog else "x"),
+        ax.ticklabel_format(axis="both" if len(linear) == 2 else linear[0],
                             style="sci", scilimits=(-3, 4), useMathText=True)
     ax.set_xlabel(spec.get("xlabel", ""))
     ax.set_ylabel(spec.get("ylabel", ""))
     ax.grid(True, which="major", alpha=0.35)
-    if xlog or ylog:
+    if log["x"] or log["y"]:
         ax.grid(True, which="minor", alpha=0.12)
     if labelled:
         ax.legend(fontsize="small", framealpha=0.85)
