@@ -64,7 +64,7 @@ struct ContactSpec {
 };
 
 enum class Integrator { verlet, adr };
-enum class StableStepEstimate { silling_askari, power_iteration };
+enum class StableStepEstimate { silling_askari, lanczos };
 
 struct TimeSpec {
   Integrator integrator = Integrator::verlet;

@@ -181,8 +181,8 @@ void read_time(const TomlReader& t, Scene& s) {
   if (s.time.dt && t.has("safety_factor")) t.fail("safety_factor", "give either dt or safety_factor, not both");
   if (auto e = t.optional_string("stable_step")) {
     if (*e == "silling_askari") s.time.estimate = StableStepEstimate::silling_askari;
-    else if (*e == "power_iteration") s.time.estimate = StableStepEstimate::power_iteration;
-    else t.fail("stable_step", "must be \"silling_askari\" or \"power_iteration\"; got \"" + *e + "\"");
+    else if (*e == "lanczos") s.time.estimate = StableStepEstimate::lanczos;
+    else t.fail("stable_step", "must be \"silling_askari\" or \"lanczos\"; got \"" + *e + "\"");
   }
   if (auto v = t.optional_number("tolerance")) s.time.tolerance = t.in_range("tolerance", *v, 0.0, 1.0, true, true);
   if (auto v = t.optional_integer("max_steps")) {

@@ -1,5 +1,6 @@
 #include "solver/time/stable_step.hpp"
 
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
 
@@ -17,55 +18,78 @@ double silling_askari_step(const pd::System<D>& sys, const pd::Model<D>& model, 
 }
 
 template <int D>
-PowerIterationResult power_iteration_step(pd::System<D>& sys, pd::Model<D>& model, int max_iterations,
-                                          double tolerance) {
+LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iterations, double tolerance) {
   auto& p = sys.particles;
   const Index n = p.n_real;
-  PowerIterationResult res;
+  LanczosResult res;
   if (n == 0) return res;
   const auto u0 = p.u;
-  const auto f0_saved = p.f;
+  const auto f_saved = p.f;
   const auto broken0 = sys.broken;
+  const double rho = sys.material.rho;
 
-  // Reference force at the current state, so any pre-stress cancels.
   model.compute_forces(sys, {});
   const std::vector<Vec<D>> f0 = p.f;
-
-  // Start from the checkerboard (highest lattice frequency) with a small
-  // smooth perturbation so the start is not orthogonal to the top mode.
-  std::vector<Vec<D>> x(n);
-  for (Index i = 0; i < n; ++i) {
-    const int parity = p.site[i].sum() & 1;
-    for (int a = 0; a < D; ++a) x[i][a] = (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * i + a);
-  }
-  const double amplitude = 1e-7 * sys.spacing();  // linear regime: strain ~1e-7
-  double lambda = 0.0;
-  for (int it = 1; it <= max_iterations; ++it) {
-    double norm = 0.0;
-    for (const auto& xi : x) norm += xi.squaredNorm();
-    norm = std::sqrt(norm);
-    for (Index i = 0; i < n; ++i) p.u[i] = u0[i] + (amplitude / norm) * x[i];
+  // A x = M⁻¹K x from a force evaluation at a small displacement along x
+  // (strain ~1e-7: linear regime). A is self-adjoint in ⟨x, y⟩ = Σ V_i x_i·y_i.
+  const double amplitude = 1e-7 * sys.spacing();
+  auto dot = [&](const std::vector<Vec<D>>& a, const std::vector<Vec<D>>& b) {
+    double s = 0.0;
+    for (Index i = 0; i < n; ++i) s += p.volume[i] * a[i].dot(b[i]);
+    return s;
+  };
+  auto apply = [&](const std::vector<Vec<D>>& x, std::vector<Vec<D>>& y) {
+    double scale = 0.0;
+    for (const auto& xi : x) scale = std::max(scale, xi.cwiseAbs().maxCoeff());
+    for (Index i = 0; i < n; ++i) p.u[i] = u0[i] + (amplitude / scale) * x[i];
     p.update_ghosts();
     model.compute_forces(sys, {});
-    // y = ρ⁻¹ K x  with K x = −(f(u0 + a x̂) − f(u0)) / a · |x|
-    double num = 0.0, den = 0.0;
-    for (Index i = 0; i < n; ++i) {
-      const Vec<D> y = -(p.f[i] - f0[i]) * (norm / amplitude) / sys.material.rho;
-      num += x[i].dot(y);
-      den += x[i].squaredNorm();
-      x[i] = y;
+    for (Index i = 0; i < n; ++i) y[i] = -(p.f[i] - f0[i]) * (scale / amplitude) / rho;
+  };
+
+  // Start from the checkerboard (the highest lattice frequency) plus a small
+  // irregular part so the start is not orthogonal to the top mode.
+  std::vector<Vec<D>> v(n), v_prev(n, Vec<D>::Zero()), w(n);
+  for (Index i = 0; i < n; ++i) {
+    const int parity = p.site[i].sum() & 1;
+    for (int a = 0; a < D; ++a) v[i][a] = (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * i + a);
+  }
+  double norm = std::sqrt(dot(v, v));
+  for (auto& x : v) x /= norm;
+
+  std::vector<double> alpha, beta;
+  double lambda = 0.0, lambda_10_ago = 0.0;
+  double beta_j = 0.0;
+  for (int j = 1; j <= max_iterations; ++j) {
+    apply(v, w);
+    for (Index i = 0; i < n; ++i) w[i] -= beta_j * v_prev[i];
+    const double a = dot(w, v);
+    for (Index i = 0; i < n; ++i) w[i] -= a * v[i];
+    alpha.push_back(a);
+    // Largest Ritz value of the tridiagonal T_j.
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(j, j);
+    for (int k = 0; k < j; ++k) {
+      T(k, k) = alpha[k];
+      if (k + 1 < j) T(k, k + 1) = T(k + 1, k) = beta[k];
     }
-    const double next = num / den;
-    res.relative_change = std::abs(next - lambda) / std::abs(next);
-    lambda = next;
-    res.iterations = it;
-    if (it > 5 && res.relative_change < tolerance) break;
+    lambda = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(T, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+    res.iterations = j;
+    if (j % 10 == 0) {
+      res.relative_change = std::abs(lambda - lambda_10_ago) / std::abs(lambda);
+      if (res.relative_change < tolerance) break;
+      lambda_10_ago = lambda;
+    }
+    beta_j = std::sqrt(dot(w, w));
+    if (!(beta_j > 1e-14 * std::abs(lambda))) break;  // invariant subspace: T_j is exact
+    beta.push_back(beta_j);
+    v_prev.swap(v);
+    for (Index i = 0; i < n; ++i) v[i] = w[i] / beta_j;
   }
   p.u = u0;
   p.update_ghosts();
-  p.f = f0_saved;
+  p.f = f_saved;
   sys.broken = broken0;
-  if (!(lambda > 0.0) || !std::isfinite(lambda)) throw RunError("stable step: power iteration found no positive stiffness");
+  if (!(lambda > 0.0) || !std::isfinite(lambda)) throw RunError("stable step: the Lanczos iteration found no positive stiffness");
   res.lambda_max = lambda;
   res.dt = 2.0 / std::sqrt(lambda);
   return res;
@@ -74,8 +98,8 @@ PowerIterationResult power_iteration_step(pd::System<D>& sys, pd::Model<D>& mode
 template double silling_askari_step<1>(const pd::System<1>&, const pd::Model<1>&, double);
 template double silling_askari_step<2>(const pd::System<2>&, const pd::Model<2>&, double);
 template double silling_askari_step<3>(const pd::System<3>&, const pd::Model<3>&, double);
-template PowerIterationResult power_iteration_step<1>(pd::System<1>&, pd::Model<1>&, int, double);
-template PowerIterationResult power_iteration_step<2>(pd::System<2>&, pd::Model<2>&, int, double);
-template PowerIterationResult power_iteration_step<3>(pd::System<3>&, pd::Model<3>&, int, double);
+template LanczosResult lanczos_step<1>(pd::System<1>&, pd::Model<1>&, int, double);
+template LanczosResult lanczos_step<2>(pd::System<2>&, pd::Model<2>&, int, double);
+template LanczosResult lanczos_step<3>(pd::System<3>&, pd::Model<3>&, int, double);
 
 }  // namespace pdmpm::time
