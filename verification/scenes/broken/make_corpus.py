@@ -1,0 +1,113 @@
+#!/usr/bin/env python3
+"""Writes the broken-scene corpus: one valid base scene and mutations of it,
+each of which the solver must reject with exit status 2, a message naming the
+key, and no output files. Each file's first line says what the message must
+contain: `# expect: <key path> | <message fragment>`.
+
+Regenerate with: /usr/bin/python3 verification/scenes/broken/make_corpus.py
+"""
+from pathlib import Path
+
+BASE = """[scene]
+id = "base"
+
+[discretization]
+dimension = 2
+plane = "strain"
+spacing = 1e-3
+horizon_ratio = 3.015
+thickness = 1e-3
+
+[[shape]]
+type = "rectangle"
+min = [0.0, 0.0]
+max = [0.02, 0.01]
+
+[material]
+density = 2500
+youngs_modulus = 50e9
+poissons_ratio = 0.25
+critical_stretch = 0.002
+
+[model]
+type = "lps"
+influence = "constant"
+
+[time]
+end_time = 1e-6
+
+[[boundary]]
+name = "left"
+kind = "fixed"
+region = { type = "box", min = [0.0, 0.0], max = [0.001, 0.01] }
+"""
+
+
+def replace(old, new):
+    assert old in BASE, old
+    return BASE.replace(old, new, 1)
+
+
+CASES = {
+    "unknown_top_key": ("foo | unknown key", BASE + "\n[foo]\nbar = 1\n"),
+    "unknown_material_key": ("material.youngs_modulu | unknown key", replace("density = 2500", "density = 2500\nyoungs_modulu = 1")),
+    "missing_density": ("material.density | missing", replace("density = 2500\n", "")),
+    "negative_modulus": ("material.youngs_modulus | must be > 0", replace("youngs_modulus = 50e9", "youngs_modulus = -1.0")),
+    "zero_density": ("material.density | must be > 0", replace("density = 2500", "density = 0")),
+    "lps_incompressible": ("material.poissons_ratio | must be in (-1, 0.5)", replace("poissons_ratio = 0.25", "poissons_ratio = 0.5")),
+    "pmb_wrong_poisson": ("material.poissons_ratio | ν = 0.25 only", replace('type = "lps"', 'type = "pmb"').replace("poissons_ratio = 0.25", "poissons_ratio = 0.3")),
+    "pmb_plane_stress_poisson": ("material.poissons_ratio | ν = 0.333", replace('type = "lps"', 'type = "pmb"').replace('plane = "strain"', 'plane = "stress"')),
+    "horizon_below_spacing": ("discretization.horizon_ratio | must be in [1, 20]", replace("horizon_ratio = 3.015", "horizon_ratio = 0.5")),
+    "horizon_in_metres_too_small": ("discretization.horizon | must be ≥ the spacing", replace("horizon_ratio = 3.015", "horizon = 0.5e-3")),
+    "both_horizons": ("discretization.horizon_ratio | exactly one", replace("horizon_ratio = 3.015", "horizon_ratio = 3.015\nhorizon = 3e-3")),
+    "negative_thickness": ("discretization.thickness | must be > 0", replace("thickness = 1e-3", "thickness = -1e-3")),
+    "spacing_wrong_type": ("discretization.spacing | must be a number, got a string", replace("spacing = 1e-3", 'spacing = "1mm"')),
+    "dimension_four": ("discretization.dimension | must be 1, 2 or 3", replace("dimension = 2", "dimension = 4")),
+    "unknown_plane": ("discretization.plane | \"stress\" or \"strain\"", replace('plane = "strain"', 'plane = "membrane"')),
+    "missing_plane": ("discretization.plane | missing", replace('plane = "strain"\n', "")),
+    "empty_body": ("shape | contain no lattice site", replace("max = [0.02, 0.01]", "max = [0.0001, 0.0001]")),
+    "no_shape": ("shape | at least one [[shape]]", replace('[[shape]]\ntype = "rectangle"\nmin = [0.0, 0.0]\nmax = [0.02, 0.01]\n', "")),
+    "shape_wrong_length": ("shape[0].min | exactly 2 numbers", replace("min = [0.0, 0.0]\nmax = [0.02, 0.01]", "min = [0.0, 0.0, 0.0]\nmax = [0.02, 0.01]")),
+    "shape_inverted": ("shape[0].max | must be ≥ min", replace("max = [0.02, 0.01]", "max = [-0.02, 0.01]")),
+    "unknown_shape": ("shape[0].type | must be one of box", replace('type = "rectangle"', 'type = "hexagon"')),
+    "empty_region": ("boundary[0].region | selects no particle", replace("min = [0.0, 0.0], max = [0.001, 0.01]", "min = [0.5, 0.5], max = [0.6, 0.6]")),
+    "dt_above_stable": ("time.dt | above the stable step", replace("end_time = 1e-6", "end_time = 1e-6\ndt = 1e-3")),
+    "end_time_and_steps": ("time.end_time | exactly one of end_time and steps", replace("end_time = 1e-6", "end_time = 1e-6\nsteps = 10")),
+    "no_end": ("time.end_time | exactly one of end_time and steps", replace("end_time = 1e-6", "")),
+    "negative_end_time": ("time.end_time | must be > 0", replace("end_time = 1e-6", "end_time = -1e-6")),
+    "safety_too_large": ("time.safety_factor | must be in (0, 2]", replace("end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 3.0")),
+    "dt_and_safety": ("time.safety_factor | either dt or safety_factor", replace("end_time = 1e-6", "end_time = 1e-6\ndt = 1e-9\nsafety_factor = 0.5")),
+    "bad_toml": ("not valid TOML", replace("density = 2500", "density = = 2500")),
+    "bad_expression": ("boundary[0].value | at character", replace('kind = "fixed"', 'kind = "displacement"\nvalue = ["1e-3 *", 0]')),
+    "unknown_boundary_kind": ("boundary[0].kind | must be one of fixed", replace('kind = "fixed"', 'kind = "glued"')),
+    "value_on_fixed": ("boundary[0].value | not used by kind", replace('kind = "fixed"', 'kind = "fixed"\nvalue = [0, 0]')),
+    "displacement_without_value": ("boundary[0].value | missing", replace('kind = "fixed"', 'kind = "displacement"')),
+    "unknown_influence": ("model.influence | must be one of constant", replace('influence = "constant"', 'influence = "cubic"')),
+    "unknown_model": ("model.type | must be one of pmb, lps", replace('type = "lps"', 'type = "bondless"')),
+    "unknown_partial_volume": ("discretization.partial_volume | none, seed001, extended", replace("thickness = 1e-3", 'thickness = 1e-3\npartial_volume = "half"')),
+    "symmetry_off_lattice": ("symmetry[0].position | lattice sites or midway", BASE + '\n[[symmetry]]\naxis = "x"\nposition = -0.0003\n'),
+    "symmetry_through_body": ("symmetry[0] | both sides", BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0105\n'),
+    "precrack_outside": ("precrack[0] | cuts no bond", BASE + "\n[[precrack]]\nfrom = [0.5, 0.5]\nto = [0.6, 0.5]\n"),
+    "probe_outside": ("probe[0].point | not inside the body", BASE + '\n[[probe]]\nname = "p"\npoint = [1.0, 1.0]\n'),
+    "negative_critical_stretch": ("material.critical_stretch | must be > 0", replace("critical_stretch = 0.002", "critical_stretch = -0.002")),
+    "damage_without_criterion": ("model.damage | needs material.critical_stretch", replace("critical_stretch = 0.002\n", "").replace('influence = "constant"', 'influence = "constant"\ndamage = true')),
+    "unknown_output_field": ("output.fields | unknown field", BASE + '\n[output]\nfields = ["damage", "temperature"]\n'),
+    "unknown_callback": ("boundary[0].callback | must be one of affine", replace('kind = "fixed"', 'kind = "analytic"\ncallback = "vortex"')),
+    "callback_missing_parameter": ("boundary[0].parameters | needs parameter", replace('kind = "fixed"', 'kind = "analytic"\ncallback = "spherical_wave"\nparameters = { r0 = 0.01 }')),
+    "empty_file": ("scene | missing", ""),
+    "frames_zero": ("output.frames | must be ≥ 1", BASE + "\n[output]\nframes = 0\n"),
+    "thickness_in_3d": ("discretization.plane | only for dimension = 2", replace("dimension = 2", "dimension = 3")),
+}
+
+
+def main():
+    here = Path(__file__).resolve().parent
+    for old in here.glob("*.toml"):
+        old.unlink()
+    for name, (expect, text) in sorted(CASES.items()):
+        (here / f"{name}.toml").write_text(f"# expect: {expect}\n{text}")
+    print(f"wrote {len(CASES)} broken scenes to {here}")
+
+
+if __name__ == "__main__":
+    main()
