@@ -1,6 +1,7 @@
 #include "solver/sim/pd_run.hpp"
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -24,6 +25,13 @@ namespace pdmpm::sim {
 namespace {
 
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+
+// Peak resident memory of this process so far (bytes).
+double peak_memory_bytes() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_maxrss) * 1024.0;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -354,6 +362,9 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"force_time_s", state_.force_seconds()},
       {"bond_updates_per_second",
        state_.force_seconds() > 0 ? static_cast<double>(state_.bond_evaluations()) / state_.force_seconds() : 0.0},
+      {"peak_memory_bytes", peak_memory_bytes()},
+      {"bytes_per_bond_side",
+       (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
       {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
       {"metrics",
        {{"broken_bonds", state_.broken_bonds()},
