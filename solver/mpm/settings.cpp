@@ -96,6 +96,13 @@ std::string_view name(ShapeFunction s) {
   }
   return "?";
 }
+std::string_view name(GimpDomain g) {
+  switch (g) {
+    case GimpDomain::fixed: return "fixed";
+    case GimpDomain::stretch: return "stretch";
+  }
+  return "?";
+}
 std::string_view name(UpdateScheme s) {
   switch (s) {
     case UpdateScheme::usf: return "usf";
@@ -136,6 +143,9 @@ Setting parse_setting(std::string_view v, const std::string& file, const std::st
 }
 ShapeFunction parse_shape_function(std::string_view v, const std::string& file, const std::string& key) {
   return parse_enum(v, std::array{ShapeFunction::linear, ShapeFunction::gimp, ShapeFunction::bspline2}, file, key);
+}
+GimpDomain parse_gimp_domain(std::string_view v, const std::string& file, const std::string& key) {
+  return parse_enum(v, std::array{GimpDomain::fixed, GimpDomain::stretch}, file, key);
 }
 UpdateScheme parse_update_scheme(std::string_view v, const std::string& file, const std::string& key) {
   return parse_enum(v, std::array{UpdateScheme::usf, UpdateScheme::usl, UpdateScheme::musl}, file, key);

@@ -25,6 +25,11 @@ enum class Setting { bar1d, uniaxial_strain, plane_stress, plane_strain, solid3d
 // bspline2: quadratic B-splines (Steffen, Kirby & Berzins 2008).
 enum class ShapeFunction { linear, gimp, bspline2 };
 
+// GIMP particle domains: fixed half-widths Δx/2 (uGIMP), or stretched with the
+// deformation, lp_a = (Δx/2)·|F_aa| capped at h/2 (cpGIMP; Wallstedt & Guilkey 2008
+// show GIMP is most accurate when the domains stay contiguous).
+enum class GimpDomain { fixed, stretch };
+
 // Update-stress-first, update-stress-last, modified USL (Bardenhagen 2002;
 // Wallstedt & Guilkey 2008 describe all three).
 enum class UpdateScheme { usf, usl, musl };
@@ -125,6 +130,7 @@ struct Settings {
   int padding_cells = 3;          // "grid.padding_cells", [2, 100]
 
   ShapeFunction shape = ShapeFunction::gimp;   // "shape_function"
+  GimpDomain gimp_domain = GimpDomain::fixed;  // "gimp_domain" (gimp only)
   UpdateScheme scheme = UpdateScheme::musl;    // "update_scheme"
   double flip = 1.0;              // "flip" FLIP fraction of the particle velocity update, [0, 1]
 
@@ -154,12 +160,14 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
 // Names ↔ enums for scene parsing; unknown names throw InputError listing the allowed ones.
 std::string_view name(Setting s);
 std::string_view name(ShapeFunction s);
+std::string_view name(GimpDomain g);
 std::string_view name(UpdateScheme s);
 std::string_view name(MaterialModel m);
 std::string_view name(BcKind k);
 std::string_view name(FailureRule r);
 Setting parse_setting(std::string_view v, const std::string& file, const std::string& key);
 ShapeFunction parse_shape_function(std::string_view v, const std::string& file, const std::string& key);
+GimpDomain parse_gimp_domain(std::string_view v, const std::string& file, const std::string& key);
 UpdateScheme parse_update_scheme(std::string_view v, const std::string& file, const std::string& key);
 MaterialModel parse_material_model(std::string_view v, const std::string& file, const std::string& key);
 BcKind parse_bc_kind(std::string_view v, const std::string& file, const std::string& key);

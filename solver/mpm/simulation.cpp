@@ -256,6 +256,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   const Index na = static_cast<Index>(active_.size());
   const IVec<D> stride = grid_.stride;
   const Failure& fail = settings_.failure;
+  const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
+  const double lp0 = 0.5 * particles_.lattice.spacing;
   Index bad = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : bad)
   for (Index k = 0; k < na; ++k) {
@@ -269,6 +271,10 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
       L += vg[node] * g.transpose();
     });
     state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
+    if (stretch_domains) {
+      for (int a = 0; a < D; ++a)
+        state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
+    }
     if (state_.failed[p]) continue;  // a failed particle carries no stress
     PointHistory& hist = state_.history[p];
     const double alpha_before = hist.eq_plastic_strain;
