@@ -43,6 +43,8 @@ GridBoundary<D>::GridBoundary(const std::vector<GridBc<D>>& bcs, const Grid<D>& 
           if (m[a] >= 0 && m[a] < grid.n[a]) pairs.push_back({i, grid.index(m), a});
         }
       }
+      if (share_.empty()) share_.assign(static_cast<std::size_t>(grid.size()), 1.0);
+      for (Index i : on_plane) share_[i] *= 0.5;
       pairs_.push_back(std::move(pairs));
       plane_nodes_.push_back({std::move(on_plane), a});
       continue;
@@ -114,7 +116,7 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
           break;
         case BcKind::symmetry: break;
       }
-      if (reactions && mass && dt > 0.0) (*reactions)[b] += (*mass)[i] * (v[i] - before) / dt;
+      if (reactions && mass && dt > 0.0) (*reactions)[b] += real_share(i) * (*mass)[i] * (v[i] - before) / dt;
     }
   }
 }

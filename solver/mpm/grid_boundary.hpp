@@ -35,6 +35,11 @@ class GridBoundary {
   void constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr, double dt = 0.0,
                  std::vector<Vec<D>>* reactions = nullptr) const;
 
+  // Share of a node's (folded) mass and force that belongs to the real body: ½ on a
+  // symmetry plane (the mirror image holds the other half), ¼ where two planes meet.
+  // Reactions and work sums use it so mirror images are not counted.
+  double real_share(Index node) const { return share_.empty() ? 1.0 : share_[node]; }
+
   std::size_t count() const { return bcs_.size(); }
   const std::vector<Index>& nodes(std::size_t bc) const { return nodes_[bc]; }
 
@@ -48,6 +53,7 @@ class GridBoundary {
   std::vector<std::vector<Vec<D>>> positions_;   // per bc: positions of its nodes
   std::vector<std::vector<MirrorPair>> pairs_;   // per symmetry plane, applied in order
   std::vector<std::pair<std::vector<Index>, int>> plane_nodes_;  // per symmetry plane: nodes on it, axis
+  std::vector<double> share_;                    // real_share per node (empty: all 1)
 };
 
 }  // namespace pdmpm::mpm

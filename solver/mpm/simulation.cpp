@@ -408,7 +408,7 @@ void Simulation<D>::step(double dt) {
   // Work of external, boundary and damping forces over the step (midpoint velocity).
   {
     const Vec<3> w = deterministic_sum<Vec<3>>(N, Vec<3>::Zero(), [&](Index i) {
-      const Vec<D> vm = 0.5 * (grid_.velocity[i] + grid_.velocity_new[i]);
+      const Vec<D> vm = 0.5 * boundary_.real_share(i) * (grid_.velocity[i] + grid_.velocity_new[i]);
       Vec<3> r;
       r[0] = grid_.force_external[i].dot(vm);
       r[1] = grid_.mass[i] > 0.0 ? (grid_.mass[i] / dt) * (grid_.velocity_new[i] - v_free[i]).dot(vm) : 0.0;
