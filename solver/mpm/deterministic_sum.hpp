@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solver/core/types.hpp"
+#include "solver/mpm/parallel.hpp"
 
 namespace pdmpm::mpm {
 
@@ -13,7 +14,7 @@ T deterministic_sum(Index n, T zero, Fn&& term) {
   constexpr Index kChunk = 1024;
   const Index chunks = (n + kChunk - 1) / kChunk;
   std::vector<T> partial(static_cast<std::size_t>(chunks), zero);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (Index c = 0; c < chunks; ++c) {
     T s = zero;
     const Index end = std::min(n, (c + 1) * kChunk);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/mpm/parallel.hpp"
+
 namespace pdmpm::mpm {
 
 template <int D>
@@ -48,7 +50,7 @@ void nonlocal_average(const std::vector<Vec<D>>& x, const std::vector<double>& v
   for (Index i = 0; i < n; ++i)
     if (use[i]) order[fill[flat(cell_of(x[i]))]++] = i;
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelMin)
   for (Index i = 0; i < n; ++i) {
     if (!use[i]) continue;
     const IVec<D> c = cell_of(x[i]);

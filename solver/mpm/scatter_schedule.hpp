@@ -14,6 +14,7 @@
 
 #include "solver/core/types.hpp"
 #include "solver/mpm/grid.hpp"
+#include "solver/mpm/parallel.hpp"
 
 namespace pdmpm::mpm {
 
@@ -61,10 +62,11 @@ class ScatterSchedule {
   // fn(particle index) for every particle, scheduled as described above.
   template <class Fn>
   void for_each(Fn&& fn) const {
+    const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin;
     for (int c = 0; c < kColours; ++c) {
       const std::vector<Index>& blocks = colour_blocks_[c];
       const Index nblk = static_cast<Index>(blocks.size());
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
       for (Index bi = 0; bi < nblk; ++bi) {
         const Index b = blocks[bi];
         for (Index k = start_[b]; k < start_[b + 1]; ++k) fn(order_[k]);

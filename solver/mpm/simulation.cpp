@@ -10,6 +10,7 @@
 #include "solver/mpm/deterministic_sum.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/nonlocal.hpp"
+#include "solver/mpm/parallel.hpp"
 #include "solver/mpm/stress_measures.hpp"
 
 namespace pdmpm::mpm {
@@ -141,7 +142,7 @@ void Simulation<D>::compute_stencils() {
   std::vector<IVec<D>> cell(active_.size());
   Index bad = std::numeric_limits<Index>::max();
   const IVec<D> cells = grid_.cells();
-#pragma omp parallel for schedule(static) reduction(min : bad)
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = active_[k];
     const Vec<D> xr = particles_.position(p) - grid_.node0;
@@ -178,7 +179,7 @@ Vec<D> Simulation<D>::external_force(Index p, double t) const {
 template <int D>
 void Simulation<D>::scatter_mass_momentum(bool with_mass) {
   const Index N = grid_.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
     if (with_mass) grid_.mass[i] = 0.0;
     grid_.momentum[i].setZero();
@@ -202,7 +203,7 @@ void Simulation<D>::scatter_mass_momentum(bool with_mass) {
 template <int D>
 void Simulation<D>::scatter_forces() {
   const Index N = grid_.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
     grid_.force_internal[i].setZero();
     grid_.force_external[i].setZero();
@@ -226,7 +227,7 @@ void Simulation<D>::scatter_forces() {
 template <int D>
 void Simulation<D>::grid_velocity_from_momentum(std::vector<Vec<D>>& v) const {
   const Index N = grid_.size();
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) v[i] = grid_.mass[i] > 0.0 ? Vec<D>(grid_.momentum[i] / grid_.mass[i]) : Vec<D>::Zero();
 }
 
@@ -259,7 +260,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
   const double lp0 = 0.5 * particles_.lattice.spacing;
   Index bad = std::numeric_limits<Index>::max();
-#pragma omp parallel for schedule(static) reduction(min : bad)
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = active_[k];
     const Stencil<D>& st = stencil_[p];
@@ -323,7 +324,7 @@ double Simulation<D>::stable_dt() const {
   const double M = m.wave_modulus(settings_.setting);
   double vmax = 0.0;
   const Index na = static_cast<Index>(active_.size());
-#pragma omp parallel for schedule(static) reduction(max : vmax)
+#pragma omp parallel for schedule(static) reduction(max : vmax) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = active_[k];
     double modulus = M;
@@ -386,7 +387,7 @@ void Simulation<D>::step(double dt) {
   const Index N = grid_.size();
   std::vector<Vec<D>> damping(static_cast<std::size_t>(N), Vec<D>::Zero());
   const double cv = settings_.damping_viscous, cl = settings_.damping_local;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
     const double m = grid_.mass[i];
     if (!(m > 0.0)) {
@@ -425,7 +426,7 @@ void Simulation<D>::step(double dt) {
   const IVec<D> stride = grid_.stride;
   const double flip = settings_.flip;
   bool finite = true;
-#pragma omp parallel for schedule(static) reduction(&& : finite)
+#pragma omp parallel for schedule(static) reduction(&& : finite) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = active_[k];
     const Stencil<D>& st = stencil_[p];
