@@ -132,7 +132,7 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
                            kSource, "", kProblem});
   }
   plot_series.push_back(mu::slope_line("slope 2", hs, 0.03, 2.0));
-  test::record_data(kProblem, "convergence",
+  test::record_data(kProblem, "01_convergence",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: centre-of-mass error vs cell size"},
                      {"xlabel", "cell size h (m)"},
@@ -154,7 +154,7 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
     const BarResult r = run_bar(n, mpm::ShapeFunction::bspline2, mpm::UpdateScheme::musl, 0.1, false);
     rows.push_back({"bspline2 (fixed nodes)", "musl", n, r.err_u, r.err_v, r.energy_drift});
   }
-  test::record_data(kProblem, "errors",
+  test::record_data(kProblem, "02_errors",
                     {{"kind", "table"},
                      {"title", "Vibrating bar errors (one period)"},
                      {"columns", {"shape", "scheme", "cells", "u_cm error", "v_cm error", "max |E/E0 - 1|"}},
@@ -177,7 +177,7 @@ TEST(FastMpmBarVibration, EnergyStaysWithinLeapfrogBound) {
                          "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
                          "factor 2 for the MPM transfers",
                          "Hairer, Lubich & Wanner, Geometric Numerical Integration (2006), ch. IX", "", kProblem});
-  test::record_data(kProblem, "energy",
+  test::record_data(kProblem, "04_energy",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: total energy / initial (GIMP, MUSL, 32 cells)"},
                      {"xlabel", "t (s)"},
@@ -187,7 +187,7 @@ TEST(FastMpmBarVibration, EnergyStaysWithinLeapfrogBound) {
                      {"series", {mu::series("E/E0", r.t, r.energy)}},
                      {"caption", "Bounded oscillation of order ω dt, no secular drift over four periods."}});
   const BarResult c = run_bar(16, mpm::ShapeFunction::gimp, mpm::UpdateScheme::musl, 0.1, false);
-  test::record_data(kProblem, "velocity_history",
+  test::record_data(kProblem, "03_velocity_history",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: centre-of-mass velocity (GIMP, MUSL, 16 cells)"},
                      {"xlabel", "t (s)"},

@@ -171,7 +171,7 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
     }
   }
   plot.push_back(mu::series("reference 23.96", {hs.front(), hs.back()}, {kReference, kReference}, "dashed"));
-  test::record_data(kProblem, tag + "_tip",
+  test::record_data(kProblem, tag + "_1_tip",
                     {{"kind", "plot"},
                      {"title", "Cook's membrane: deflection of the loaded edge's midpoint vs cell size"},
                      {"xlabel", "cell size h"},
@@ -182,7 +182,7 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
                      {"caption", "Plane stress, E = 1, ν = 1/3, F = 1 (applied as 1e-4 and scaled: MPM is "
                                  "geometrically nonlinear); two particles per cell per axis; static state by "
                                  "mass-proportional grid damping 0.022/s ≈ twice the first natural frequency."}});
-  test::record_data(kProblem, tag + "_table",
+  test::record_data(kProblem, tag + "_2_table",
                     {{"kind", "table"},
                      {"title", "Cook's membrane deflection"},
                      {"columns", {"shape", "cells along 48", "h", "u_y(48,52)", "relative error", "steps"}},

@@ -89,7 +89,7 @@ TEST(FastMpmPatch, UniformStressStaysUniform) {
                          "round-off: interior nodal forces are sums of O(10²) terms of size V τ / h that cancel exactly "
                          "in exact arithmetic",
                          "patch test: Σ_p V_p ∇S_Ip = 0 at interior nodes for particles tiling the cells", "", kProblem});
-  test::record_data(kProblem, "uniform_stress",
+  test::record_data(kProblem, "01_uniform_stress",
                     {{"kind", "table"},
                      {"title", "Uniform stress patch test: max |σ − σ₀| / |σ₀| after 50 steps"},
                      {"columns", {"shape", "scheme", "1D bar", "2D plane stress", "2D plane strain", "3D"}},
@@ -170,7 +170,7 @@ TEST(FastMpmPatch, RigidRotationLeavesStressUnchanged) {
                          "a stress-free body turned rigidly by 90° shall stay stress-free to 1e-13·E",
                          worst_free, 1e-13, 0.0, Compare::at_most,
                          "round-off of ln U for U = I(1 + O(1e-16))", "frame indifference", "", kProblem});
-  test::record_data(kProblem, "rigid_rotation",
+  test::record_data(kProblem, "02_rigid_rotation",
                     {{"kind", "table"},
                      {"title", "Rigid rotation by 90°: max |RᵀσR − σ₀| / E"},
                      {"columns", {"material", "shape", "scheme", "2D pre-stressed", "3D pre-stressed", "2D stress-free"}},

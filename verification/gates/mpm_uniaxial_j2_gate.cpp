@@ -144,7 +144,7 @@ TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
                          wl, 1e-10, 0.0, Compare::at_most,
                          "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
                          "J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", "", kProblem});
-  test::record_data(kProblem, "stress_strain",
+  test::record_data(kProblem, "01_stress_strain",
                     {{"kind", "plot"},
                      {"title", "Uniaxial stress–strain curve, one plane-stress material point"},
                      {"xlabel", "log strain ε"},
@@ -191,7 +191,7 @@ TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
                          std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha, 1e-10, 0.0,
                          Compare::at_most, "exact along radial paths (see above)",
                          "ε̄_p = ∫|dε_p| in uniaxial stress", "", kProblem});
-  test::record_data(kProblem, "cyclic",
+  test::record_data(kProblem, "02_cyclic",
                     {{"kind", "plot"},
                      {"title", "Cyclic uniaxial loading, ±1 % (plane-stress point)"},
                      {"xlabel", "log strain ε"},
@@ -279,7 +279,7 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
                          worst_lateral, 0.01, 0.0, Compare::at_most,
                          "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
                          "J2 flow rule and Hooke's law in uniaxial stress", "", kProblem});
-  test::record_data(kProblem, "plate_curve",
+  test::record_data(kProblem, "03_plate_curve",
                     {{"kind", "plot"},
                      {"title", "Plate in uniaxial tension (plane stress MPM) vs bilinear law"},
                      {"xlabel", "mean log strain ε̄₁₁"},

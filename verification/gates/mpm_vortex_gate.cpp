@@ -147,7 +147,7 @@ TEST(FastMpmVortex, ConvergenceAtModerateAmplitude) {
     }
   }
   plot.push_back(mu::slope_line("slope 2", hs, 0.02, 2.0));
-  test::record_data(kProblem, "convergence",
+  test::record_data(kProblem, "01_convergence",
                     {{"kind", "plot"},
                      {"title", "Generalized vortex (A = 0.1): L2 position error vs cell size"},
                      {"xlabel", "cell size h"},
@@ -157,7 +157,7 @@ TEST(FastMpmVortex, ConvergenceAtModerateAmplitude) {
                      {"series", plot},
                      {"caption", "MUSL, CFL 0.2 (of c_p + max R α̇), two particles per cell per axis on a lattice "
                                  "clipped to the ring."}});
-  test::record_data(kProblem, "errors",
+  test::record_data(kProblem, "02_errors",
                     {{"kind", "table"},
                      {"title", "Generalized vortex (A = 0.1) errors"},
                      {"columns", {"method", "cells per unit length", "max_t L2 error", "L2 error at t = 1"}},
@@ -180,7 +180,7 @@ TEST(FullMpmVortex, LargeAmplitudeBehaviour) {
         }
         rows.push_back({m.label, flip == 1.0 ? "FLIP" : "PIC", n, outcome});
       }
-  test::record_data(kProblem, "large_amplitude",
+  test::record_data(kProblem, "03_large_amplitude",
                     {{"kind", "table"},
                      {"title", "Generalized vortex at A = 1/3"},
                      {"columns", {"method", "velocity update", "cells per unit length", "outcome"}},
