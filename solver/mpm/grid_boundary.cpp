@@ -107,11 +107,10 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
         case BcKind::fixed: v[i].setZero(); break;
         case BcKind::roller: v[i][bc.axis] = 0.0; break;
         case BcKind::velocity:
-          if (bc.velocity_field) {
-            v[i] = r * bc.velocity_field(positions_[b][n], t);
-          } else {
+          {
+            const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
             for (int a = 0; a < D; ++a)
-              if (bc.components[a]) v[i][a] = r * bc.velocity[a];
+              if (bc.components[a]) v[i][a] = r * target[a];
           }
           break;
         case BcKind::symmetry: break;

@@ -243,7 +243,7 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
         c.finite(k + ".velocity", b.velocity[a]);
         any = any || b.components[a];
       }
-      if (!any && !b.velocity_field) c.fail(k + ".components", "a velocity boundary must prescribe at least one component");
+      if (!any) c.fail(k + ".components", "a velocity boundary must prescribe at least one component");
     }
     c.non_negative(k + ".ramp_time", b.ramp_time);
   }

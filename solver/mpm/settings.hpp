@@ -99,7 +99,8 @@ struct GridBc {
   Vec<D> velocity = Vec<D>::Zero(); // "boundary[i].velocity" (m/s)
   std::array<bool, D> components{}; // "boundary[i].components" prescribed components (velocity)
   double ramp_time = 0.0;           // "boundary[i].ramp_time" linear ramp 0 → velocity (s), ≥ 0
-  // Library users (tests) may prescribe v(x, t) instead of a constant; overrides `velocity`.
+  // Instead of the constant, v(x, t) at the node position x (e.g. a scene expression);
+  // only the `components` flagged are imposed. The ramp still applies.
   std::function<Vec<D>(const Vec<D>& x, double t)> velocity_field;
 };
 
@@ -114,6 +115,9 @@ struct Traction {
   int normal_axis = 0;               // "traction[i].normal_axis" [0, D)
   Vec<D> traction = Vec<D>::Zero();  // "traction[i].traction" (Pa)
   double ramp_time = 0.0;            // "traction[i].ramp_time" (s), ≥ 0
+  // Instead of the constant, t(X, t) at the particle's reference position X (e.g. a
+  // scene expression); the ramp still applies.
+  std::function<Vec<D>(const Vec<D>& X, double t)> traction_field;
 };
 
 template <int D>

@@ -370,8 +370,10 @@ void Simulation<D>::step(double dt) {
     const Traction<D>& tr = settings_.tractions[i];
     const double r = ramp(t, tr.ramp_time);
     for (Index p : traction_particles_[i])
-      if (is_mpm(particles_.kind[p]))
-        ext_force_[p] += r * tr.traction * particles_.volume[p] / particles_.lattice.spacing;
+      if (is_mpm(particles_.kind[p])) {
+        const Vec<D> value = tr.traction_field ? tr.traction_field(particles_.x0[p], t) : tr.traction;
+        ext_force_[p] += r * value * particles_.volume[p] / particles_.lattice.spacing;
+      }
   }
   update_nonlocal();
 

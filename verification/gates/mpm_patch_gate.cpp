@@ -111,6 +111,7 @@ std::pair<double, double> rigid_rotation(mpm::Setting setting, mpm::ShapeFunctio
   const double omega = 2.0 * M_PI;  // rad/s; a quarter turn takes 0.25 s
   mpm::GridBc<D> spin;
   spin.kind = mpm::BcKind::velocity;
+  spin.components.fill(true);
   spin.velocity_field = [&](const Vec<D>& x, double) {
     Vec<D> v = Vec<D>::Zero();
     v[0] = -omega * (x[1] - centre[1]);

@@ -185,6 +185,7 @@ TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {
     const double rate = 100.0;  // 1/s along x; lateral −0.499 rate: small volumetric rate
     GridBc<3> drive;
     drive.kind = BcKind::velocity;
+    drive.components.fill(true);
     drive.velocity_field = [&](const Vec<3>& x, double) {
       return Vec<3>(rate * x[0], -0.499 * rate * x[1], -0.499 * rate * x[2]);
     };
