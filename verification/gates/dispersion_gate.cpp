@@ -65,13 +65,18 @@ double classical_speed(const pd::Elastic& m, Setting s) { return std::sqrt(m.lon
 std::string slab_scene(const std::string& model, Setting s, int N, int width, const Discretisation& d) {
   const int D = pd::dimension(s);
   const auto mat = material_for(model, s);
-  std::string lo = "[0", hi = "[" + g17(N * dx);
+  std::string lo = "[0", hi = "[";
+  hi += g17(N * dx);
   for (int a = 1; a < D; ++a) lo += ", 0", hi += ", " + g17(width * dx);
   lo += "]", hi += "]";
   std::string t = "[scene]\nid = \"dispersion\"\n[discretization]\ndimension = " + std::to_string(D) +
                   "\nspacing = " + g17(dx) + "\nhorizon_ratio = " + g17(d.ratio) + "\npartial_volume = \"" +
                   str(pd::name(d.pv)) + "\"\n";
-  if (D == 2) t += std::string("plane = \"") + (s == Setting::plane_stress ? "stress" : "strain") + "\"\nthickness = 1e-3\n";
+  if (D == 2) {
+    t += "plane = \"";
+    t += s == Setting::plane_stress ? "stress" : "strain";
+    t += "\"\nthickness = 1e-3\n";
+  }
   if (D == 1) t += "area = 1e-6\n";
   t += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
   t += "[material]\ndensity = " + g17(rho) + "\nyoungs_modulus = " + g17(E) + "\n";
