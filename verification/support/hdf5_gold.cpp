@@ -147,6 +147,7 @@ std::string Reader::string_attribute(const std::string& object, const std::strin
     char* s = nullptr;
     Handle mem = Handle(check(H5Tcopy(H5T_C_S1), "copy string type"));
     H5Tset_size(mem.get(), H5T_VARIABLE);
+    H5Tset_cset(mem.get(), H5Tget_cset(type.get()));  // HDF5 does not convert between ASCII and UTF-8
     check(H5Aread(a.get(), mem.get(), &s), "read attribute '" + name + "'");
     std::string out = s ? s : "";
     H5free_memory(s);
