@@ -52,12 +52,13 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.d = k_.d;
   a.breaking = req.break_bonds;
   a.s0 = req.critical_stretch;
+  a.after_force = req.break_after_force;
   // Pass 1: break bonds, dilatation over the intact ones; ghosts copy their owner's.
-  const std::int64_t newly = kernels::lps_dilatation<D>(a);
+  std::int64_t newly = kernels::lps_dilatation<D>(a);
   for (Index g = 0; g < p.n_ghost(); ++g) theta_[n + g] = theta_[p.ghost_owner[g]];
   for (Index i = 0; i < p.size(); ++i) alpha_[i] = k_.A * theta_[i] * inv_m_[i];
   // Pass 2: pair forces.
-  kernels::lps_forces<D>(a);
+  newly += kernels::lps_forces<D>(a);
   return newly;
 }
 

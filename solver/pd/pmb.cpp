@@ -31,6 +31,7 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.c = c_;
   a.breaking = req.break_bonds;
   a.s0 = req.critical_stretch;
+  a.after_force = req.break_after_force;
   return kernels::pmb_forces<D>(a);
 }
 

@@ -38,8 +38,8 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
   return active().lps_dilatation[D - 1](a);
 }
 template <int D>
-void lps_forces(const LpsArgs& a) {
-  active().lps_forces[D - 1][a.energy != nullptr](a);
+std::int64_t lps_forces(const LpsArgs& a) {
+  return active().lps_forces[D - 1][a.energy != nullptr](a);
 }
 const char* simd_level() { return active().name; }
 
@@ -49,8 +49,8 @@ template std::int64_t pmb_forces<3>(const PmbArgs&);
 template std::int64_t lps_dilatation<1>(const LpsArgs&);
 template std::int64_t lps_dilatation<2>(const LpsArgs&);
 template std::int64_t lps_dilatation<3>(const LpsArgs&);
-template void lps_forces<1>(const LpsArgs&);
-template void lps_forces<2>(const LpsArgs&);
-template void lps_forces<3>(const LpsArgs&);
+template std::int64_t lps_forces<1>(const LpsArgs&);
+template std::int64_t lps_forces<2>(const LpsArgs&);
+template std::int64_t lps_forces<3>(const LpsArgs&);
 
 }  // namespace pdmpm::pd::kernels

@@ -47,6 +47,7 @@ struct PmbArgs {
   double c;               // micromodulus
   bool breaking;
   double s0;
+  bool after_force;       // break after acting, at s > s₀ (LAMMPS) instead of before, at s ≥ s₀
 };
 
 struct LpsArgs {
@@ -64,6 +65,7 @@ struct LpsArgs {
   int d;                  // dimension in θ = (d/m) Σ ω β |ξ| e V
   bool breaking;
   double s0;
+  bool after_force;       // as in PmbArgs: pass 1 keeps such bonds, pass 2 breaks them
 };
 
 // Each returns the number of bond sides broken by the call.
@@ -72,7 +74,7 @@ std::int64_t pmb_forces(const PmbArgs& a);
 template <int D>
 std::int64_t lps_dilatation(const LpsArgs& a);
 template <int D>
-void lps_forces(const LpsArgs& a);
+std::int64_t lps_forces(const LpsArgs& a);
 
 // Which instruction set the dispatcher chose: "avx512", "avx2" or "sse2".
 // PDMPM_SIMD=sse2|avx2|avx512 in the environment forces a (supported) choice.

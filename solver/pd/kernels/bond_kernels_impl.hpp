@@ -90,9 +90,11 @@ inline Deformed<D> deform(const Block<D>& B) {
   return g;
 }
 
-// Lanes where s = num / ((|y| + L) L) ≥ s₀ (compared without the division).
-inline m8 reaches_critical_stretch(const d8& num, const d8& len, const d8& L, double s0) {
-  return num >= s0 * L * (len + L);
+// Lanes where s = num / ((|y| + L) L) reaches s₀ (compared without the division):
+// s ≥ s₀, or s > s₀ for the break-after-force rule.
+inline m8 reaches_critical_stretch(const d8& num, const d8& len, const d8& L, double s0, bool strict) {
+  const d8 limit = s0 * L * (len + L);
+  return strict ? num > limit : num >= limit;
 }
 
 // Bonds of this block that just broke are marked; returns how many.
@@ -124,8 +126,8 @@ std::int64_t pmb(const PmbArgs& a) {
       const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
       B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
       const Deformed<D> g = deform<D>(B);
-      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0);
-      const m8 acts = B.live & ~breaks;
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
+      const m8 acts = a.after_force ? B.live : B.live & ~breaks;
       const d8 cw = c * B.wv;
       const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
       for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
@@ -144,7 +146,7 @@ std::int64_t pmb(const PmbArgs& a) {
 template <int D>
 std::int64_t lps_dilatation(const LpsArgs& a) {
   const FamilyView& fam = a.fam;
-  const m8 breaking = a.breaking ? m8{} - 1 : m8{};
+  const m8 breaking = a.breaking && !a.after_force ? m8{} - 1 : m8{};
   const double s0 = a.s0;
   std::int64_t newly = 0;
 #pragma omp parallel for schedule(static) reduction(+ : newly)
@@ -158,7 +160,7 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
       const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
       B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
       const Deformed<D> g = deform<D>(B);
-      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
       const m8 acts = B.live & ~breaks;
       acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
       newly += mark_broken(fam, b0, count, breaks);
@@ -172,9 +174,11 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
 // ω β V_j [ |ξ| (α_i + α_j)(|y| + |ξ|) + (b_i + b_j) num ] / ((|y| + |ξ|) |y|),
 // α = Aθ/m and b = B/m per particle: one division per bond.
 template <int D, bool Energy>
-void lps_forces(const LpsArgs& a) {
+std::int64_t lps_forces(const LpsArgs& a) {
   const FamilyView& fam = a.fam;
-#pragma omp parallel for schedule(static)
+  const m8 breaking = a.breaking && a.after_force ? m8{} - 1 : m8{};
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
   for (Index i = 0; i < fam.n_owners; ++i) {
     d8 acc[D], dev = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
@@ -199,10 +203,13 @@ void lps_forces(const LpsArgs& a) {
         const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
         dev += keep(B.live, B.wv * ed * ed);
       }
+      // Break-after-force rule: i's side only, which no other particle reads in this pass.
+      newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
     }
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = 0.5 * a.kappa * theta_i * theta_i + 0.5 * beta_i * lane_sum(dev);
   }
+  return newly;
 }
 
 }  // namespace

@@ -9,7 +9,7 @@ struct KernelSet {
   // Index [D - 1][with energy].
   std::int64_t (*pmb[3][2])(const PmbArgs&);
   std::int64_t (*lps_dilatation[3])(const LpsArgs&);
-  void (*lps_forces[3][2])(const LpsArgs&);
+  std::int64_t (*lps_forces[3][2])(const LpsArgs&);
 };
 
 extern const KernelSet kernels_sse2;
