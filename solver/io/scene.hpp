@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/mpm/settings.hpp"
 #include "solver/pd/influence.hpp"
 #include "solver/pd/material.hpp"
 #include "solver/pd/partial_volume.hpp"
@@ -85,6 +86,22 @@ struct OutputSpec {
   std::vector<std::string> fields;
 };
 
+// Material point method options (model type "mpm"): the [mpm] table, and the
+// constitutive keys of [material]. Plain copies of mpm::Settings fields.
+struct MpmSpec {
+  mpm::ShapeFunction shape = mpm::ShapeFunction::gimp;
+  mpm::GimpDomain gimp_domain = mpm::GimpDomain::fixed;
+  mpm::UpdateScheme scheme = mpm::UpdateScheme::musl;
+  double flip = 1.0;
+  double cell_size = 0.0, cell_factor = 2.0;
+  int padding_cells = 3;
+  double damping_viscous = 0.0, damping_local = 0.0;
+  mpm::Nonlocal nonlocal;
+  mpm::MaterialModel constitutive = mpm::MaterialModel::linear_elastic;
+  double yield_stress = 0.0, tangent_modulus = 0.0;
+  mpm::Failure failure;
+};
+
 struct Scene {
   std::string file, id, description;
   int dimension = 3;
@@ -100,6 +117,9 @@ struct Scene {
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
   ContactSpec contact;
+  std::optional<MpmSpec> mpm;  // set when model = "mpm"
+
+  bool is_mpm() const { return model == "mpm"; }
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
@@ -111,8 +131,15 @@ struct Scene {
   OutputSpec output;
 };
 
-// Field names `output.fields` may list.
+// Field names `output.fields` may list (PD models; MPM adds its own).
 const std::vector<std::string>& field_names();
+const std::vector<std::string>& mpm_field_names();
+
+// MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
+// (read from the material table's own reader) and the [mpm] table.
+class TomlReader;
+void read_mpm_material(const TomlReader& material, Scene& s);
+void read_mpm_options(const TomlReader& table, Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.
 Scene parse_scene(const std::string& path);
