@@ -29,7 +29,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   const auto& t = sys.table;
   const Index n = p.n_real;
   const double s0 = req.critical_stretch;
-  const bool breaking = req.break_bonds;
+  const bool breaking = req.break_bonds, after = req.break_after_force;
   std::uint8_t* broken = sys.broken.data();
   const Index* nbr = fam.neighbor.data();
   const std::uint16_t* shape = fam.shape.data();
@@ -50,7 +50,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
       const int k = shape[b];
       const double L = t.length[k];
       const auto bond = deform<D>(t.xi[k], L, u[j] - ui);
-      if (breaking && bond.e >= s0 * L) {
+      if (breaking && !after && bond.e >= s0 * L) {
         broken[b] = 1;
         ++newly_broken;
         continue;
@@ -64,7 +64,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   // Pass 2: pair forces (t_ij + t_ji) β V_j M_ij.
   const double A = k_.A, B = k_.B;
   std::vector<double>* energy = req.energy;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) reduction(+ : newly_broken)
   for (Index i = 0; i < n; ++i) {
     Vec<D> fi = Vec<D>::Zero();
     double dev = 0.0;
@@ -84,6 +84,11 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
       if (energy) {
         const double ed = bond.e - k_.gamma * th_i * L;
         dev += t.weight[k] * ed * ed * vol[j];
+      }
+      // i's side only, which no other particle reads in this pass.
+      if (breaking && after && bond.e > s0 * L) {
+        broken[b] = 1;
+        ++newly_broken;
       }
     }
     p.f[i] = fi;

@@ -26,7 +26,7 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   const Index n = p.n_real;
   const double c = c_;
   const double s0 = req.critical_stretch;
-  const bool breaking = req.break_bonds;
+  const bool breaking = req.break_bonds, after = req.break_after_force;
   std::vector<double>* energy = req.energy;
   std::uint8_t* broken = sys.broken.data();
   const Index* nbr = fam.neighbor.data();
@@ -47,7 +47,7 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
       const double L = t.length[k];
       const auto bond = deform<D>(t.xi[k], L, u[j] - ui);
       const double s = bond.e / L;
-      if (breaking && s >= s0) {
+      if (breaking && !after && s >= s0) {
         broken[b] = 1;
         ++newly_broken;
         continue;
@@ -55,6 +55,10 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
       const double cw = c * t.weight[k] * vol[j];
       fi += (cw * s / bond.l) * bond.y;
       if (energy) wi += 0.25 * cw * s * s * L;  // ½ Σ_j (c ω s² |ξ| / 2) β V_j
+      if (breaking && after && s > s0) {
+        broken[b] = 1;
+        ++newly_broken;
+      }
     }
     p.f[i] = fi;
     if (energy) (*energy)[i] = wi;

@@ -1,0 +1,125 @@
+#pragma once
+// Crack observables: when and where a PD body cracks, computed from the broken
+// flags and the local damage φ at the run's history samples. Definitions (the
+// README's "Crack observables" section restates them for users):
+//
+//  cracked particle   φ_i ≥ threshold (default ½), i not excluded.
+//  excluded           the initial notch — particles with φ > 0 before the first step
+//                     (the neighbourhood of the pre-cracks) — plus the particles of the
+//                     scene's crack.exclude regions (supports, loaded layers: a boundary
+//                     layer tearing off along its length is not a propagating crack).
+//  initiation time    first sample at which some particle is cracked.
+//  first bond failure at a named location: first sample at which a bond of a
+//                     particle within the location's radius is broken (bonds cut by
+//                     pre-cracks do not count).
+//  components         connected components of the graph whose vertices are the
+//                     real particles and whose edges are the intact bonds (union–find;
+//                     a bond to a symmetry ghost joins its owner).
+//  pieces             components holding at least min_piece_fraction of the particles.
+//  separation time    first sample with more pieces than before the first step.
+//  cracks             connected sets of cracked particles, two cracked particles being
+//                     linked when they are family members (|ξ| ≤ δ). A crack's identity
+//                     is its earliest-cracked particle; when two cracks join, the later
+//                     one ends. Its origin is the centroid of the particles that cracked
+//                     at its first sample; its tip is the member farthest from the origin
+//                     (reference positions).
+//  path               the tip positions at every sample (a polyline in time).
+//  extent             |tip − origin|; angle: direction of the chord origin → tip.
+//  speed              growth rate of the extent's running maximum over a sliding
+//                     window W: (r̂(t) − r̂(t − W)) / W.
+//  overall angle      direction of the principal axis of all cracked particles.
+#include <optional>
+#include <unordered_map>
+#include <string>
+#include <vector>
+
+#include "solver/pd/system.hpp"
+
+namespace pdmpm::pd {
+
+struct CrackSettings {
+  double threshold = 0.5;            // φ at which a particle counts as cracked
+  double min_piece_fraction = 0.01;  // smallest component counted as a piece, as a fraction of N
+  double speed_window = 0.0;         // W in seconds; 0 → ten sample intervals
+};
+
+template <int D>
+struct NamedLocation {
+  std::string name;
+  Vec<D> point = Vec<D>::Zero();
+  double radius = 0.0;
+  std::vector<Index> particles;  // real particles within radius of point
+};
+
+template <int D>
+struct CrackPath {
+  Index key = -1;                 // earliest-cracked member (the crack's identity)
+  Vec<D> origin = Vec<D>::Zero();
+  bool ended = false;             // joined an older crack
+  std::vector<double> time;
+  std::vector<Vec<D>> tip;
+  std::vector<double> extent;     // |tip − origin|
+  std::vector<double> reach;      // running maximum of the extent
+  std::vector<double> speed;      // windowed growth rate of the running maximum extent
+  std::size_t members = 0;        // cracked particles at the last sample
+
+  double max_speed() const;
+  double angle_deg() const;       // chord origin → last tip, from the x axis
+};
+
+// Rayleigh wave speed of an isotropic solid in the given setting: root of
+// (2 − ξ²)² = 4 √(1 − ξ²) √(1 − ξ² c_s²/c_p²), c_R = ξ c_s, with c_p of the setting.
+double rayleigh_speed(const Elastic& m, Setting s);
+
+template <int D>
+class CrackObservables {
+ public:
+  // `exclude` marks particles where no crack is detected, in addition to those
+  // damaged at the first sample. Call sample() at t = 0 before the first step.
+  CrackObservables(const System<D>& sys, const CrackSettings& settings, std::vector<NamedLocation<D>> locations,
+                   std::vector<std::uint8_t> exclude);
+
+  void sample(const System<D>& sys, const std::vector<double>& phi, double t);
+
+  const CrackSettings& settings() const { return settings_; }
+  const std::vector<NamedLocation<D>>& locations() const { return locations_; }
+  // Times are empty until the event has been seen.
+  std::optional<double> initiation_time() const { return initiation_; }
+  std::optional<double> separation_time() const { return separation_; }
+  std::optional<double> first_failure(std::size_t location) const { return first_failure_[location]; }
+  std::int64_t broken_at(std::size_t location) const { return broken_at_[location]; }
+  Index components() const { return components_; }
+  Index pieces() const { return pieces_; }
+  Index initial_pieces() const { return initial_pieces_; }
+  Index cracked() const { return cracked_; }
+  const std::vector<CrackPath<D>>& paths() const { return paths_; }
+  // The crack with the largest extent at the last sample (nullptr if none).
+  const CrackPath<D>* leading() const;
+  double overall_angle_deg() const { return overall_angle_; }
+  double max_speed() const;
+  // First sample time of every particle that cracked (negative: never).
+  const std::vector<double>& crack_time() const { return crack_time_; }
+  const std::vector<std::uint8_t>& excluded() const { return excluded_; }
+
+ private:
+  void count_components(const System<D>& sys);
+  void track_cracks(const System<D>& sys, double t);
+  void update_speed(CrackPath<D>& c) const;
+
+  CrackSettings settings_;
+  std::vector<NamedLocation<D>> locations_;
+  std::vector<std::uint8_t> excluded_;
+  bool started_ = false;
+  double dt_sample_ = 0.0, last_t_ = 0.0;
+
+  std::vector<double> crack_time_;
+  std::vector<std::optional<double>> first_failure_;
+  std::vector<std::int64_t> baseline_broken_, broken_at_;
+  std::optional<double> initiation_, separation_;
+  Index components_ = 0, pieces_ = 0, initial_pieces_ = 0, cracked_ = 0;
+  double overall_angle_ = 0.0;
+  std::vector<CrackPath<D>> paths_;
+  std::unordered_map<Index, std::size_t> path_of_key_;
+};
+
+}  // namespace pdmpm::pd
