@@ -82,6 +82,10 @@ CrackObservables<D>::CrackObservables(const System<D>& sys, const CrackSettings&
                                       std::vector<NamedLocation<D>> locations, std::vector<std::uint8_t> exclude)
     : settings_(settings), locations_(std::move(locations)), excluded_(std::move(exclude)) {
   const Index n = sys.n_real();
+  // Ten lattice spacings at the Rayleigh speed: a one-site error in the tip then
+  // changes the speed by at most a tenth of c_R.
+  const double c_ref = D == 1 ? std::sqrt(sys.material.E / sys.material.rho) : rayleigh_speed(sys.material, sys.setting);
+  default_window_ = 10.0 * sys.spacing() / c_ref;
   excluded_.resize(static_cast<std::size_t>(n), 0);
   crack_time_.assign(static_cast<std::size_t>(n), -1.0);
   first_failure_.assign(locations_.size(), std::nullopt);
@@ -97,8 +101,6 @@ void CrackObservables<D>::sample(const System<D>& sys, const std::vector<double>
   if (!started_) {
     for (Index i = 0; i < n; ++i)
       if (phi[i] > 0.0) excluded_[i] = 1;
-  } else if (dt_sample_ <= 0.0 && t > last_t_) {
-    dt_sample_ = t - last_t_;
   }
 
   for (std::size_t k = 0; k < locations_.size(); ++k) {
@@ -118,30 +120,36 @@ void CrackObservables<D>::sample(const System<D>& sys, const std::vector<double>
   }
   if (!initiation_ && cracked_ > 0) initiation_ = t;
 
-  count_components(sys);
-  if (!started_) initial_pieces_ = pieces_;
-  else if (pieces_ > initial_pieces_ && !separation_) separation_ = t;
-
+  count_components(sys, phi);
   track_cracks(sys, t);
+  if (!started_) {
+    initial_pieces_ = pieces_;
+  } else if (pieces_ > initial_pieces_ && !separation_) {
+    separation_ = t;
+    separation_angle_ = overall_angle_;
+  }
   started_ = true;
-  last_t_ = t;
 }
 
 template <int D>
-void CrackObservables<D>::count_components(const System<D>& sys) {
+void CrackObservables<D>::count_components(const System<D>& sys, const std::vector<double>& phi) {
   const auto& fam = sys.families;
   const auto& p = sys.particles;
   const Index n = p.n_real;
-  UnionFind uf(n);
+  UnionFind all(n), sound(n);
+  auto is_sound = [&](Index i) { return phi[i] < settings_.threshold; };
   for (Index i = 0; i < n; ++i)
-    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b)
-      if (!sys.broken[b]) uf.unite(i, real_of(p, fam.neighbor[b]));
+    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
+      if (sys.broken[b]) continue;
+      const Index j = real_of(p, fam.neighbor[b]);
+      all.unite(i, j);
+      if (is_sound(i) && is_sound(j)) sound.unite(i, j);
+    }
   const double min_size = std::max(1.0, settings_.min_piece_fraction * static_cast<double>(n));
   components_ = pieces_ = 0;
   for (Index i = 0; i < n; ++i) {
-    if (uf.find(i) != i) continue;
-    ++components_;
-    if (static_cast<double>(uf.size_of_root(i)) >= min_size) ++pieces_;
+    if (all.find(i) == i) ++components_;
+    if (is_sound(i) && sound.find(i) == i && static_cast<double>(sound.size_of_root(i)) >= min_size) ++pieces_;
   }
 }
 
@@ -232,21 +240,24 @@ void CrackObservables<D>::track_cracks(const System<D>& sys, double t) {
 template <int D>
 void CrackObservables<D>::update_speed(CrackPath<D>& c) const {
   const std::size_t k = c.time.size() - 1;
-  const double window = settings_.speed_window > 0.0 ? settings_.speed_window : 10.0 * dt_sample_;
+  const double window = settings_.speed_window > 0.0 ? settings_.speed_window : default_window_;
   const double t = c.time[k], t0 = t - window;
   if (window <= 0.0 || t0 < c.time.front()) {
     c.speed.push_back(std::numeric_limits<double>::quiet_NaN());
     return;
   }
-  // Running maximum of the extent at t and (linearly interpolated) at t − W.
-  std::size_t q = k;
-  while (q > 0 && c.time[q - 1] > t0) --q;  // c.time[q−1] ≤ t0 < c.time[q]
-  double r0 = c.reach[0];
-  if (q > 0) {
-    const double w = (t0 - c.time[q - 1]) / (c.time[q] - c.time[q - 1]);
-    r0 = c.reach[q - 1] + w * (c.reach[q] - c.reach[q - 1]);
+  // Least-squares slope of the running maximum of the extent over the samples in
+  // [t − W, t]: the tip moves in lattice steps, and a fit through every sample in
+  // the window is less sensitive to that than a difference of its two ends.
+  double st = 0.0, sr = 0.0, stt = 0.0, str = 0.0;
+  int count = 0;
+  for (std::size_t q = k + 1; q-- > 0 && c.time[q] >= t0 - 1e-12 * window;) {
+    const double x = c.time[q] - t, y = c.reach[q];
+    st += x, sr += y, stt += x * x, str += x * y;
+    ++count;
   }
-  c.speed.push_back((c.reach[k] - r0) / window);
+  const double den = count * stt - st * st;
+  c.speed.push_back(count >= 3 && den > 0.0 ? (count * str - st * sr) / den : std::numeric_limits<double>::quiet_NaN());
 }
 
 template <int D>

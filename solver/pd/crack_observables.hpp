@@ -14,8 +14,12 @@
 //                     pre-cracks do not count).
 //  components         connected components of the graph whose vertices are the
 //                     real particles and whose edges are the intact bonds (union–find;
-//                     a bond to a symmetry ghost joins its owner).
-//  pieces             components holding at least min_piece_fraction of the particles.
+//                     a bond to a symmetry ghost joins its owner): fragments included.
+//  pieces             the same graph without the particles at φ ≥ threshold (the crack
+//                     itself), counting components that hold at least min_piece_fraction
+//                     of the particles. Removing the crack's particles matters: a particle
+//                     pulled into an opening crack keeps compressed bonds to both faces,
+//                     which would otherwise join two pieces that carry no load between them.
 //  separation time    first sample with more pieces than before the first step.
 //  cracks             connected sets of cracked particles, two cracked particles being
 //                     linked when they are family members (|ξ| ≤ δ). A crack's identity
@@ -25,9 +29,13 @@
 //                     (reference positions).
 //  path               the tip positions at every sample (a polyline in time).
 //  extent             |tip − origin|; angle: direction of the chord origin → tip.
-//  speed              growth rate of the extent's running maximum over a sliding
-//                     window W: (r̂(t) − r̂(t − W)) / W.
+//  speed              growth rate of the extent's running maximum r̂: least-squares
+//                     slope of r̂ against t over the samples in a sliding window
+//                     [t − W, t]; undefined until the crack is W old. The tip moves in
+//                     lattice steps: the default W = 10 Δx / c_R (crack.speed_window)
+//                     makes a one-site error worth at most 10 % of c_R.
 //  overall angle      direction of the principal axis of all cracked particles.
+#include <limits>
 #include <optional>
 #include <unordered_map>
 #include <string>
@@ -40,7 +48,7 @@ namespace pdmpm::pd {
 struct CrackSettings {
   double threshold = 0.5;            // φ at which a particle counts as cracked
   double min_piece_fraction = 0.01;  // smallest component counted as a piece, as a fraction of N
-  double speed_window = 0.0;         // W in seconds; 0 → ten sample intervals
+  double speed_window = 0.0;         // W in seconds; 0 → 10 Δx / c_R
 };
 
 template <int D>
@@ -82,6 +90,7 @@ class CrackObservables {
   void sample(const System<D>& sys, const std::vector<double>& phi, double t);
 
   const CrackSettings& settings() const { return settings_; }
+  double speed_window() const { return settings_.speed_window > 0.0 ? settings_.speed_window : default_window_; }
   const std::vector<NamedLocation<D>>& locations() const { return locations_; }
   // Times are empty until the event has been seen.
   std::optional<double> initiation_time() const { return initiation_; }
@@ -96,13 +105,15 @@ class CrackObservables {
   // The crack with the largest extent at the last sample (nullptr if none).
   const CrackPath<D>* leading() const;
   double overall_angle_deg() const { return overall_angle_; }
+  // The overall angle when the body first separated (NaN before).
+  double separation_angle_deg() const { return separation_angle_; }
   double max_speed() const;
   // First sample time of every particle that cracked (negative: never).
   const std::vector<double>& crack_time() const { return crack_time_; }
   const std::vector<std::uint8_t>& excluded() const { return excluded_; }
 
  private:
-  void count_components(const System<D>& sys);
+  void count_components(const System<D>& sys, const std::vector<double>& phi);
   void track_cracks(const System<D>& sys, double t);
   void update_speed(CrackPath<D>& c) const;
 
@@ -110,14 +121,14 @@ class CrackObservables {
   std::vector<NamedLocation<D>> locations_;
   std::vector<std::uint8_t> excluded_;
   bool started_ = false;
-  double dt_sample_ = 0.0, last_t_ = 0.0;
+  double default_window_ = 0.0;
 
   std::vector<double> crack_time_;
   std::vector<std::optional<double>> first_failure_;
   std::vector<std::int64_t> baseline_broken_, broken_at_;
   std::optional<double> initiation_, separation_;
   Index components_ = 0, pieces_ = 0, initial_pieces_ = 0, cracked_ = 0;
-  double overall_angle_ = 0.0;
+  double overall_angle_ = 0.0, separation_angle_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<CrackPath<D>> paths_;
   std::unordered_map<Index, std::size_t> path_of_key_;
 };

@@ -82,7 +82,7 @@ template <int D>
 std::vector<std::string> crack_columns(const pd::CrackObservables<D>& c) {
   std::vector<std::string> cols{"cracked_particles", "components", "pieces", "cracks"};
   for (int a = 0; a < D; ++a) cols.push_back(std::string("crack_tip_") + axis_name(a));
-  cols.insert(cols.end(), {"crack_extent", "crack_angle_deg", "crack_speed"});
+  cols.insert(cols.end(), {"crack_extent", "crack_angle_deg", "crack_speed", "crack_overall_angle_deg"});
   for (const auto& loc : c.locations()) cols.push_back("broken_bonds_" + loc.name);
   return cols;
 }
@@ -99,6 +99,7 @@ void crack_values(const pd::CrackObservables<D>& c, std::vector<double>& row) {
   row.push_back(lead ? lead->extent.back() : 0.0);
   row.push_back(lead ? lead->angle_deg() : nan);
   row.push_back(lead ? lead->speed.back() : nan);
+  row.push_back(c.cracked() >= 2 ? c.overall_angle_deg() : nan);
   for (std::size_t k = 0; k < c.locations().size(); ++k) row.push_back(static_cast<double>(c.broken_at(k)));
 }
 
@@ -113,6 +114,7 @@ nlohmann::json crack_summary(const pd::CrackObservables<D>& c, const pd::System<
   j["threshold"] = c.settings().threshold;
   j["min_piece_fraction"] = c.settings().min_piece_fraction;
   j["rayleigh_speed"] = pd::rayleigh_speed(sys.material, sys.setting);
+  j["speed_window"] = c.speed_window();
   j["initiation_time"] = opt(c.initiation_time());
   // Where cracking started: the origins of the cracks born at the initiation time.
   nlohmann::json sites = nlohmann::json::array();
@@ -125,6 +127,8 @@ nlohmann::json crack_summary(const pd::CrackObservables<D>& c, const pd::System<
   j["initial_pieces"] = c.initial_pieces();
   j["cracked_particles"] = c.cracked();
   j["overall_angle_deg"] = c.overall_angle_deg();
+  j["overall_angle_at_separation_deg"] =
+      std::isfinite(c.separation_angle_deg()) ? nlohmann::json(c.separation_angle_deg()) : nlohmann::json(nullptr);
   j["max_speed"] = c.max_speed();
   nlohmann::json loc = nlohmann::json::object();
   for (std::size_t k = 0; k < c.locations().size(); ++k) {

@@ -155,6 +155,33 @@ Raster layer_map(const std::vector<std::array<double, 3>>& x0, const std::vector
   return damage_map(xy, v, dx, pixels_per_cell);
 }
 
+Raster scatter_map(const std::vector<std::array<double, 2>>& xy, const std::vector<double>& value,
+                   const std::vector<double>& depth, const PlaneView& view, int width, int height, int size) {
+  std::vector<std::size_t> order(xy.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return depth[a] < depth[b]; });
+  Raster img(width, height);
+  for (std::size_t i : order) {
+    const int px = static_cast<int>(std::lround(view.px(xy[i][0]))) - size / 2;
+    const int py = static_cast<int>(std::lround(view.py(xy[i][1]))) - size / 2;
+    img.fill(px, py, px + size - 1, py + size - 1, damage_colour(value[i]));
+  }
+  return img;
+}
+
+Raster grid(const std::vector<Raster>& cells, int columns, int gap) {
+  if (cells.empty()) throw std::invalid_argument("grid: no cells");
+  int w = 0, h = 0;
+  for (const auto& c : cells) w = std::max(w, c.width()), h = std::max(h, c.height());
+  const int rows = static_cast<int>((cells.size() + static_cast<std::size_t>(columns) - 1) / static_cast<std::size_t>(columns));
+  Raster out(columns * w + (columns - 1) * gap, rows * h + (rows - 1) * gap);
+  for (std::size_t k = 0; k < cells.size(); ++k) {
+    const int col = static_cast<int>(k) % columns, row = static_cast<int>(k) / columns;
+    out.paste(cells[k], col * (w + gap), (rows - 1 - row) * (h + gap));
+  }
+  return out;
+}
+
 Raster side_by_side(const Raster& left, const Raster& right, int gap) {
   Raster out(left.width() + gap + right.width(), std::max(left.height(), right.height()));
   out.paste(left, 0, 0);

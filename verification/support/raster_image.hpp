@@ -54,6 +54,14 @@ Raster damage_map(const std::vector<std::array<double, 2>>& xy, const std::vecto
 Raster layer_map(const std::vector<std::array<double, 3>>& x0, const std::vector<double>& value, double dx, int normal,
                  double layer, int pixels_per_cell);
 
+// Points (x, y) drawn as squares of `size` pixels coloured by value, in the view's
+// frame; points with a larger `depth` are drawn last (on top).
+Raster scatter_map(const std::vector<std::array<double, 2>>& xy, const std::vector<double>& value,
+                   const std::vector<double>& depth, const PlaneView& view, int width, int height, int size);
+
+// Rasters in a grid of `columns`, left to right then top to bottom.
+Raster grid(const std::vector<Raster>& cells, int columns, int gap = 8);
+
 // Two rasters side by side with a gap, aligned at the bottom.
 Raster side_by_side(const Raster& left, const Raster& right, int gap = 8);
 
