@@ -322,9 +322,9 @@ void read_loads(const TomlReader& root, Scene& s) {
 void read_crack(const TomlReader& root, Scene& s) {
   if (auto c = root.optional_table("crack")) {
     s.crack.enabled = true;
-    if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, false, true);
+    if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("min_piece_fraction"))
-      s.crack.min_piece_fraction = c->in_range("min_piece_fraction", *v, 0.0, 0.5, false, true);
+      s.crack.min_piece_fraction = c->in_range("min_piece_fraction", *v, 0.0, 0.5, true, false);
     if (auto v = c->optional_number("speed_window")) s.crack.speed_window = c->positive("speed_window", *v);
     if (c->has("exclude"))
       for (const auto& shape : c->table_or_tables("exclude")) s.crack.exclude.push_back(read_shape(shape, s.dimension));

@@ -190,9 +190,16 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
 }
 
 // Broken-bond fractions and damage maps of both codes for one breaking scene.
+// `lammps_rules`: give the scene LAMMPS' contact and bond-break rules (when its file keeps pdmpm's).
 void compare_breaking(const std::string& scene_file, const std::string& tag, int reps, std::int64_t steps, double dt,
-                      const std::string& gate_id, const std::string& label, int normal, double layer, int ppc) {
-  const auto scene = io::parse_scene(scene_path(scene_file));
+                      const std::string& gate_id, const std::string& label, int normal, double layer, int ppc,
+                      bool lammps_rules = false) {
+  auto scene = io::parse_scene(scene_path(scene_file));
+  if (lammps_rules) {
+    scene.contact.enabled = true;
+    scene.contact.bonded_pairs = true;
+    scene.break_after_force = true;
+  }
   const auto setup = sim::build_pd<3>(scene);
   const Pair r = run_both(scene, setup, steps, dt, reps, tag);
   ASSERT_FALSE(r.lmp.frames.empty());
@@ -245,7 +252,7 @@ TEST(FullLammpsComparison, SeedDiskBrokenBondFraction) {
   const double dt = *scene.time.dt;
   const auto steps = static_cast<std::int64_t>(std::llround(*scene.time.end_time / dt));
   compare_breaking("disk_impact.toml", "seed_disk", 1, steps, dt, "lammps.disk_impact_seed.broken_fraction",
-                   "the seed 001 disk (constant ω)", 2, 0.00225, 2);
+                   "the seed 001 disk (constant ω)", 2, 0.00225, 2, true);
 }
 
 }  // namespace
