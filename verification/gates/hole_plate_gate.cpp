@@ -110,6 +110,8 @@ TEST(FastHolePlate, CracksAgainstSeed004) {
   rows.push_back({"crack initiation (φ ≥ ½)", 11.97e-6, t_init});
   rows.push_back({"cracks still growing (paper)", 13.3e-6, "—"});
   rows.push_back({"separation into two pieces", 15.96e-6, t_sep});
+  rows.push_back({"time step Δt (paper) / Lanczos stable step of this model", *scene.time.dt,
+                  run.summary.at("dt_estimate").at("lanczos")});
   test::record_data(problem, "01_times",
                     {{"kind", "table"},
                      {"title", "Measured times against seed 004 §5.1"},

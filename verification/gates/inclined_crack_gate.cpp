@@ -75,6 +75,8 @@ TEST(FastInclinedCrack, CracksAgainstSeed004) {
   rows.push_back({"lower wing branched (paper)", 9.31e-6, "—"});
   rows.push_back({"through-crack: two pieces", 10.64e-6, t_sep});
   rows.push_back({"overall direction at separation [°]", 45.0, angle});
+  rows.push_back({"time step Δt (paper) / Lanczos stable step of this model", *scene.time.dt,
+                  run.summary.at("dt_estimate").at("lanczos")});
   test::record_data(problem, "01_times",
                     {{"kind", "table"},
                      {"title", "Measured times against seed 004 §5.2"},
