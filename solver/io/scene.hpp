@@ -70,6 +70,7 @@ struct ContactSpec {
 struct CrackSpec {
   bool enabled = false;
   double threshold = 0.5;
+  double path_threshold = 0.35;
   double min_piece_fraction = 0.01;
   double speed_window = 0.0;  // s; 0 → ten history intervals
   std::vector<ShapeSpec> exclude;  // regions where no crack is detected

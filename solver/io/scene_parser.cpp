@@ -323,6 +323,8 @@ void read_crack(const TomlReader& root, Scene& s) {
   if (auto c = root.optional_table("crack")) {
     s.crack.enabled = true;
     if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("path_threshold"))
+      s.crack.path_threshold = c->in_range("path_threshold", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("min_piece_fraction"))
       s.crack.min_piece_fraction = c->in_range("min_piece_fraction", *v, 0.0, 0.5, true, false);
     if (auto v = c->optional_number("speed_window")) s.crack.speed_window = c->positive("speed_window", *v);

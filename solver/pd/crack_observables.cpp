@@ -114,9 +114,11 @@ void CrackObservables<D>::sample(const System<D>& sys, const std::vector<double>
 
   cracked_ = 0;
   for (Index i = 0; i < n; ++i) {
-    if (excluded_[i] || phi[i] < settings_.threshold) continue;
-    if (crack_time_[i] < 0.0) crack_time_[i] = t;
+    if (excluded_[i]) continue;
+    if (phi[i] >= settings_.path_threshold && crack_time_[i] < 0.0) crack_time_[i] = t;
+    if (phi[i] < settings_.threshold) continue;
     ++cracked_;
+    if (!initiation_) initiation_particles_.push_back(i);
   }
   if (!initiation_ && cracked_ > 0) initiation_ = t;
 

@@ -4,11 +4,17 @@
 // README's "Crack observables" section restates them for users):
 //
 //  cracked particle   φ_i ≥ threshold (default ½), i not excluded.
+//  crack face         φ_i ≥ path_threshold (default 0.35), i not excluded. A clean
+//                     straight cut leaves its face particles at φ ≈ 0.39 (δ = 3Δx:
+//                     the share of a disk beyond Δx/2 from its centre), below ½, so
+//                     crack paths follow the faces: with ½ a crack's tip would stand
+//                     still while the cut advances and then jump.
 //  excluded           the initial notch — particles with φ > 0 before the first step
 //                     (the neighbourhood of the pre-cracks) — plus the particles of the
 //                     scene's crack.exclude regions (supports, loaded layers: a boundary
 //                     layer tearing off along its length is not a propagating crack).
-//  initiation time    first sample at which some particle is cracked.
+//  initiation time    first sample at which some particle is cracked; the
+//                     initiation particles are the ones cracked at that sample.
 //  first bond failure at a named location: first sample at which a bond of a
 //                     particle within the location's radius is broken (bonds cut by
 //                     pre-cracks do not count).
@@ -21,12 +27,11 @@
 //                     pulled into an opening crack keeps compressed bonds to both faces,
 //                     which would otherwise join two pieces that carry no load between them.
 //  separation time    first sample with more pieces than before the first step.
-//  cracks             connected sets of cracked particles, two cracked particles being
-//                     linked when they are family members (|ξ| ≤ δ). A crack's identity
-//                     is its earliest-cracked particle; when two cracks join, the later
-//                     one ends. Its origin is the centroid of the particles that cracked
-//                     at its first sample; its tip is the member farthest from the origin
-//                     (reference positions).
+//  cracks             connected sets of crack-face particles, two being linked when
+//                     they are family members (|ξ| ≤ δ). A crack's identity is its
+//                     earliest member; when two cracks join, the younger one ends. Its
+//                     origin is the centroid of its members at its first sample; its tip
+//                     is the member farthest from the origin (reference positions).
 //  path               the tip positions at every sample (a polyline in time).
 //  extent             |tip − origin|; angle: direction of the chord origin → tip.
 //  speed              growth rate of the extent's running maximum r̂: least-squares
@@ -34,7 +39,7 @@
 //                     [t − W, t]; undefined until the crack is W old. The tip moves in
 //                     lattice steps: the default W = 10 Δx / c_R (crack.speed_window)
 //                     makes a one-site error worth at most 10 % of c_R.
-//  overall angle      direction of the principal axis of all cracked particles.
+//  overall angle      direction of the principal axis of all crack-face particles.
 #include <limits>
 #include <optional>
 #include <unordered_map>
@@ -47,6 +52,7 @@ namespace pdmpm::pd {
 
 struct CrackSettings {
   double threshold = 0.5;            // φ at which a particle counts as cracked
+  double path_threshold = 0.35;      // φ of the particles that make up crack paths (crack faces)
   double min_piece_fraction = 0.01;  // smallest component counted as a piece, as a fraction of N
   double speed_window = 0.0;         // W in seconds; 0 → 10 Δx / c_R
 };
@@ -94,6 +100,7 @@ class CrackObservables {
   const std::vector<NamedLocation<D>>& locations() const { return locations_; }
   // Times are empty until the event has been seen.
   std::optional<double> initiation_time() const { return initiation_; }
+  const std::vector<Index>& initiation_particles() const { return initiation_particles_; }
   std::optional<double> separation_time() const { return separation_; }
   std::optional<double> first_failure(std::size_t location) const { return first_failure_[location]; }
   std::int64_t broken_at(std::size_t location) const { return broken_at_[location]; }
@@ -108,7 +115,7 @@ class CrackObservables {
   // The overall angle when the body first separated (NaN before).
   double separation_angle_deg() const { return separation_angle_; }
   double max_speed() const;
-  // First sample time of every particle that cracked (negative: never).
+  // First sample time at which each particle became a crack face (negative: never).
   const std::vector<double>& crack_time() const { return crack_time_; }
   const std::vector<std::uint8_t>& excluded() const { return excluded_; }
 
@@ -127,6 +134,7 @@ class CrackObservables {
   std::vector<std::optional<double>> first_failure_;
   std::vector<std::int64_t> baseline_broken_, broken_at_;
   std::optional<double> initiation_, separation_;
+  std::vector<Index> initiation_particles_;
   Index components_ = 0, pieces_ = 0, initial_pieces_ = 0, cracked_ = 0;
   double overall_angle_ = 0.0, separation_angle_ = std::numeric_limits<double>::quiet_NaN();
   std::vector<CrackPath<D>> paths_;

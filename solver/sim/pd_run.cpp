@@ -112,14 +112,14 @@ nlohmann::json crack_summary(const pd::CrackObservables<D>& c, const pd::System<
   };
   nlohmann::json j;
   j["threshold"] = c.settings().threshold;
+  j["path_threshold"] = c.settings().path_threshold;
   j["min_piece_fraction"] = c.settings().min_piece_fraction;
   j["rayleigh_speed"] = pd::rayleigh_speed(sys.material, sys.setting);
   j["speed_window"] = c.speed_window();
   j["initiation_time"] = opt(c.initiation_time());
-  // Where cracking started: the origins of the cracks born at the initiation time.
+  // Where cracking started: the particles cracked at the initiation time.
   nlohmann::json sites = nlohmann::json::array();
-  for (const auto& p : c.paths())
-    if (c.initiation_time() && p.time.front() == *c.initiation_time()) sites.push_back(vec(p.origin));
+  for (Index i : c.initiation_particles()) sites.push_back(vec(sys.particles.x0[i]));
   j["initiation_sites"] = sites;
   j["separation_time"] = opt(c.separation_time());
   j["components"] = c.components();

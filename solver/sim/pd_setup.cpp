@@ -137,7 +137,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
     out.probes.push_back({s.probes[k].name, best});
   }
   if (s.crack.enabled) {
-    out.crack = pd::CrackSettings{s.crack.threshold, s.crack.min_piece_fraction, s.crack.speed_window};
+    out.crack = pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
     out.crack_exclude.assign(static_cast<std::size_t>(sys.particles.n_real), 0);
     if (!s.crack.exclude.empty()) {
       const auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(s.crack.exclude), s.spacing);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <initializer_list>
 #include <stdexcept>
 
 namespace pdmpm::test {
@@ -32,6 +33,82 @@ void chunk(std::vector<std::uint8_t>& out, const char* type, const std::vector<s
   out.insert(out.end(), type, type + 4);
   out.insert(out.end(), body.begin(), body.end());
   put32(out, crc32(out.data() + start, out.size() - start) ^ 0xFFFFFFFFu);
+}
+
+// Bits into a deflate stream, least significant first.
+class BitWriter {
+ public:
+  explicit BitWriter(std::vector<std::uint8_t>& out) : out_(out) {}
+  void bits(std::uint32_t value, int count) {
+    for (int k = 0; k < count; ++k) push((value >> k) & 1u);
+  }
+  // Huffman codes go most significant bit first.
+  void code(std::uint32_t value, int count) {
+    for (int k = count - 1; k >= 0; --k) push((value >> k) & 1u);
+  }
+  void flush() {
+    if (n_) out_.push_back(acc_), acc_ = 0, n_ = 0;
+  }
+
+ private:
+  void push(std::uint32_t bit) {
+    acc_ = static_cast<std::uint8_t>(acc_ | (bit << n_));
+    if (++n_ == 8) out_.push_back(acc_), acc_ = 0, n_ = 0;
+  }
+  std::vector<std::uint8_t>& out_;
+  std::uint8_t acc_ = 0;
+  int n_ = 0;
+};
+
+// Fixed literal/length code of RFC 1951 §3.2.6.
+void literal_length(BitWriter& w, int symbol) {
+  if (symbol < 144) w.code(static_cast<std::uint32_t>(0x30 + symbol), 8);
+  else if (symbol < 256) w.code(static_cast<std::uint32_t>(0x190 + symbol - 144), 9);
+  else if (symbol < 280) w.code(static_cast<std::uint32_t>(symbol - 256), 7);
+  else w.code(static_cast<std::uint32_t>(0xC0 + symbol - 280), 8);
+}
+
+void match(BitWriter& w, int length, int distance) {
+  static const int len_base[] = {3,  4,  5,  6,  7,  8,  9,  10, 11,  13,  15,  17,  19,  23, 27,
+                                 31, 35, 43, 51, 59, 67, 83, 99, 115, 131, 163, 195, 227, 258};
+  static const int len_extra[] = {0, 0, 0, 0, 0, 0, 0, 0, 1, 1, 1, 1, 2, 2, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 5, 5, 5, 5, 0};
+  static const int dist_base[] = {1,   2,   3,   4,   5,   7,    9,    13,   17,   25,   33,   49,   65,    97,    129,
+                                  193, 257, 385, 513, 769, 1025, 1537, 2049, 3073, 4097, 6145, 8193, 12289, 16385, 24577};
+  static const int dist_extra[] = {0, 0, 0, 0, 1, 1, 2, 2, 3, 3, 4, 4, 5, 5, 6, 6, 7, 7, 8, 8, 9, 9, 10, 10, 11, 11, 12, 12, 13, 13};
+  int l = 28;
+  while (len_base[l] > length) --l;
+  literal_length(w, 257 + l);
+  w.bits(static_cast<std::uint32_t>(length - len_base[l]), len_extra[l]);
+  int d = 29;
+  while (dist_base[d] > distance) --d;
+  w.code(static_cast<std::uint32_t>(d), 5);
+  w.bits(static_cast<std::uint32_t>(distance - dist_base[d]), dist_extra[d]);
+}
+
+// One final fixed-Huffman block; greedy matches at the given distances (≤ 32768).
+void deflate_fixed(const std::vector<std::uint8_t>& raw, std::initializer_list<std::size_t> distances,
+                   std::vector<std::uint8_t>& out) {
+  BitWriter w(out);
+  w.bits(1, 1);  // BFINAL
+  w.bits(1, 2);  // BTYPE = 01, fixed codes
+  for (std::size_t i = 0; i < raw.size();) {
+    std::size_t best = 0, best_d = 0;
+    for (std::size_t d : distances) {
+      if (d > i || d > 32768) continue;
+      std::size_t n = 0;
+      while (n < 258 && i + n < raw.size() && raw[i + n] == raw[i + n - d]) ++n;
+      if (n > best) best = n, best_d = d;
+    }
+    if (best >= 3) {
+      match(w, static_cast<int>(best), static_cast<int>(best_d));
+      i += best;
+    } else {
+      literal_length(w, raw[i]);
+      ++i;
+    }
+  }
+  literal_length(w, 256);  // end of block
+  w.flush();
 }
 
 std::uint8_t channel(double v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0, 1.0) * 255.0)); }
@@ -96,20 +173,11 @@ void Raster::write_png(const std::string& path) const {
       raw.insert(raw.end(), {c.r, c.g, c.b});
     }
   }
-  // zlib stream of stored (uncompressed) deflate blocks.
+  // zlib stream: one deflate block with the fixed Huffman codes and matches at two
+  // distances, the previous pixel (3) and the previous row: damage maps are mostly
+  // runs of one colour, which this shrinks by one to two orders of magnitude.
   std::vector<std::uint8_t> z{0x78, 0x01};
-  for (std::size_t pos = 0; pos < raw.size() || pos == 0;) {
-    const std::size_t n = std::min<std::size_t>(65535, raw.size() - pos);
-    const bool last = pos + n == raw.size();
-    z.push_back(last ? 1 : 0);
-    z.push_back(static_cast<std::uint8_t>(n & 0xFF));
-    z.push_back(static_cast<std::uint8_t>(n >> 8));
-    z.push_back(static_cast<std::uint8_t>(~n & 0xFF));
-    z.push_back(static_cast<std::uint8_t>((~n >> 8) & 0xFF));
-    z.insert(z.end(), raw.begin() + static_cast<std::ptrdiff_t>(pos), raw.begin() + static_cast<std::ptrdiff_t>(pos + n));
-    pos += n;
-    if (last) break;
-  }
+  deflate_fixed(raw, {3, 1 + 3 * static_cast<std::size_t>(w_)}, z);
   std::uint32_t a = 1, b = 0;
   for (std::uint8_t v : raw) a = (a + v) % 65521u, b = (b + a) % 65521u;
   put32(z, (b << 16) | a);

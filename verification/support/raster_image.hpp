@@ -1,6 +1,7 @@
 #pragma once
-// Small RGB rasters written as PNG without any image library (stored deflate
-// blocks; CRC-32 and Adler-32 by hand), for damage maps in the report: the
+// Small RGB rasters written as PNG without any image library (a fixed-Huffman
+// deflate block with run matches; CRC-32 and Adler-32 by hand), for damage maps
+// in the report: the
 // particles of a lattice drawn as square cells coloured by a value, with crack
 // paths drawn over them.
 #include <array>
