@@ -157,8 +157,8 @@ TEST(FastHolePlate, CracksAgainstSeed004) {
   }
   test::record_image(problem, "04_paper_moments", test::grid(cells, 2),
                      "Damage and crack paths at the paper's moments (fig. 3 a–d)",
-                     "t = " + when + " µs (left to right, top to bottom). Colour: φ from 0 (dark blue) to 1 (dark red); black: "
-                     "crack tip paths up to that moment; white: crack origins.");
+                     "t = " + when + " µs (left to right, top to bottom). Colour: φ from 0 (dark blue) to 1 (dark red); black dots: "
+                     "crack tip positions at every history sample up to that moment; white: crack origins.");
   cells.clear();
   when.clear();
   for (double t : later_moments) {

@@ -110,7 +110,7 @@ TEST(FastInclinedCrack, CracksAgainstSeed004) {
     }
     test::record_image(problem, name, test::grid(cells, 3), title,
                        "t = " + when + " µs (left to right, top to bottom). Colour: φ from 0 (dark blue) to 1 (dark red); "
-                       "black: crack tip paths; white: crack origins. The pre-crack is the 45° segment at the centre.");
+                       "black dots: crack tip positions at every history sample; white: crack origins. The pre-crack is the 45° segment at the centre.");
   }
 }
 

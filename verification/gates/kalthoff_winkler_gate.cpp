@@ -91,7 +91,7 @@ void run_case(double spacing, const std::string& tag) {
     }
   test::record_image(problem, "03_damage_" + tag, test::grid(cells, static_cast<int>(cells.size())), "Damage and crack path" + at,
                      "t = " + when + " µs. Upper half of the plate; impact on the left edge below the notch (y < 25 mm). "
-                     "Colour: φ from 0 (dark blue) to 1 (dark red); black: crack tip paths; white: origins.");
+                     "Colour: φ from 0 (dark blue) to 1 (dark red); black dots: crack tip positions at every history sample; white: origins.");
 }
 
 TEST(FastKalthoffWinkler, CrackAngle) { run_case(0.5e-3, "dx0.5mm"); }

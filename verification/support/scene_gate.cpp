@@ -62,10 +62,12 @@ Raster damage_with_paths(const Frame2d& frame, const nlohmann::json& crack, doub
     const auto& y = path.at("y");
     if (t.empty() || t.front().get<double>() > frame.time * (1 + 1e-9)) continue;
     const double ox = c.at("origin")[0].get<double>(), oy = c.at("origin")[1].get<double>();
-    double px = ox, py = oy;
+    // Tip positions as dots: when a crack branches its tip alternates between the
+    // branches, and dots then trace both where a polyline would zigzag.
     for (std::size_t k = 0; k < t.size() && t[k].get<double>() <= frame.time * (1 + 1e-9); ++k) {
-      img.line(v.px(px), v.py(py), v.px(x[k].get<double>()), v.py(y[k].get<double>()), {0, 0, 0}, 2);
-      px = x[k].get<double>(), py = y[k].get<double>();
+      const int px = static_cast<int>(std::lround(v.px(x[k].get<double>())));
+      const int py = static_cast<int>(std::lround(v.py(y[k].get<double>())));
+      img.fill(px - 1, py - 1, px + 1, py + 1, {0, 0, 0});
     }
     const int ix = static_cast<int>(std::lround(v.px(ox))), iy = static_cast<int>(std::lround(v.py(oy)));
     img.fill(ix - 2, iy - 2, ix + 2, iy + 2, {255, 255, 255});

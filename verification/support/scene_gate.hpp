@@ -40,7 +40,7 @@ struct Frame2d {
 Frame2d read_frame_2d(const FieldsReader& f, const FrameInfo& frame);
 
 // Damage map of a 2D frame with the crack paths of summary.metrics.crack drawn over it
-// (black: the tip positions up to the frame's time; white squares: the origins).
+// (black dots: the tip positions up to the frame's time; white squares: the origins).
 Raster damage_with_paths(const Frame2d& frame, const nlohmann::json& crack, double dx, int pixels_per_cell);
 
 // Σ|φ_i − φ_m(i)| / Σ φ_i over the particles whose mirror m(i) (about the line
