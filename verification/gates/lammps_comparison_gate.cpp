@@ -191,7 +191,8 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
                                            json::array({"max |Δv| / max |v|", rel_v}),
                                            json::array({"pdmpm particle-steps/s (1 thread, median of 3)", r.ours_rate}),
                                            json::array({"LAMMPS particle-steps/s (1 thread, median of 3)", r.lmp_rate}),
-                                           json::array({"pdmpm / LAMMPS speed", r.ours_rate / r.lmp_rate})})},
+                                           json::array({"pdmpm / LAMMPS speed", r.ours_rate / r.lmp_rate}),
+                                           json::array({"LAMMPS version", r.lmp.version})})},
                      {"caption", "Both runs in one process run, alternating three times; times are the time-step loops only "
                                  "(LAMMPS: its Loop time). Δ = pdmpm − LAMMPS."}});
 }

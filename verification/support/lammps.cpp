@@ -199,6 +199,7 @@ Result run(const io::Scene& scene, const sim::PdSetup<3>& setup, const Options& 
   std::smatch m;
   if (std::regex_search(r.log, m, std::regex(R"(Loop time of ([0-9.eE+-]+) on)"))) r.loop_seconds = std::stod(m[1]);
   if (std::regex_search(r.log, m, std::regex(R"(total # of bonds = ([0-9]+))"))) r.bonds = std::stoll(m[1]);
+  if (std::regex_search(r.log, m, std::regex(R"(LAMMPS \(([^)]*)\))"))) r.version = m[1];
   r.frames = read_dump(o.work_dir / "dump.pdmpm", static_cast<std::size_t>(setup.system.particles.n_real));
   return r;
 }

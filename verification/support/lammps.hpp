@@ -71,6 +71,7 @@ struct Result {
   double loop_seconds = 0.0;  // LAMMPS' own "Loop time" (the time steps only)
   double wall_seconds = 0.0;  // the whole lmp process, set-up included
   std::int64_t bonds = 0;     // "total # of bonds" LAMMPS reports (bond sides)
+  std::string version;        // from the log's first line, e.g. "7 Jan 2022"
   std::string log;            // log.pdmpm
 };
 
