@@ -50,6 +50,7 @@ struct PrecrackSpec {
 struct IndenterSpec {
   std::vector<double> center, velocity;
   double radius = 0.0, stiffness = 0.0;
+  bool force_density = false;  // k (R − r)² is a force density (N/m³, LAMMPS' fix indent on PERI atoms), not a force
 };
 
 struct ProbeSpec {
@@ -62,6 +63,24 @@ struct ContactSpec {
   double stiffness_factor = 15.0;  // c_s = 15 c (seed 001 eq 6.3)
   double distance_factor = 0.9;    // d = min(0.9 |ξ|, 1.35 Δx) (seed 001 eq 6.4)
   double max_distance = 1.35;      // in units of Δx
+  bool bonded_pairs = false;       // also between bonded particles (LAMMPS peri/pmb's rule)
+};
+
+// Crack observables (solver/pd/crack_observables.hpp): enabled by a [crack] table
+// or any [[observe]] location.
+struct CrackSpec {
+  bool enabled = false;
+  double threshold = 0.5;
+  double path_threshold = 0.35;
+  double min_piece_fraction = 0.01;
+  double speed_window = 0.0;  // s; 0 → ten history intervals
+  std::vector<ShapeSpec> exclude;  // regions where no crack is detected
+};
+
+struct ObserveSpec {
+  std::string key, name;
+  std::vector<double> point;
+  double radius = 0.0;  // 0 → δ
 };
 
 enum class Integrator { verlet, adr };
@@ -82,6 +101,7 @@ struct TimeSpec {
 
 struct OutputSpec {
   std::optional<std::int64_t> frames, every;
+  std::vector<double> frame_times;  // frames at the steps nearest these times (plus first and last)
   std::optional<std::int64_t> history_every;
   std::vector<std::string> fields;
 };
@@ -116,6 +136,7 @@ struct Scene {
   std::string model = "pmb";
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
+  bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
 
@@ -128,6 +149,8 @@ struct Scene {
   std::vector<std::string> body_force;  // force density expressions, empty = none
   std::optional<IndenterSpec> indenter;
   std::vector<ProbeSpec> probes;
+  CrackSpec crack;
+  std::vector<ObserveSpec> observes;
   OutputSpec output;
 };
 

@@ -129,11 +129,17 @@ void read_model(const TomlReader& m, Scene& s) {
     s.influence = *inf;
   }
   s.damage = m.boolean("damage", true);
+  if (auto bt = m.optional_string("break_timing")) {
+    if (*bt != "before_force" && *bt != "after_force")
+      m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
+    s.break_after_force = *bt == "after_force";
+  }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);
     if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
     if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
+    s.contact.bonded_pairs = c->boolean("bonded_pairs", false);
     c->finish();
   }
   m.finish();
@@ -322,6 +328,10 @@ void read_loads(const TomlReader& root, Scene& s) {
     spec.velocity = ind->numbers("velocity", s.dimension);
     spec.radius = ind->positive("radius", ind->number("radius"));
     spec.stiffness = ind->positive("stiffness", ind->number("stiffness"));
+    const std::string law = ind->optional_string("law").value_or("force");
+    if (law != "force" && law != "force_density")
+      ind->fail("law", "must be \"force\" (k (R − r)² in N per particle) or \"force_density\" (in N/m³); got \"" + law + "\"");
+    spec.force_density = law == "force_density";
     ind->finish();
     s.indenter = spec;
   }
@@ -333,10 +343,44 @@ void read_loads(const TomlReader& root, Scene& s) {
   }
 }
 
+void read_crack(const TomlReader& root, Scene& s) {
+  if (auto c = root.optional_table("crack")) {
+    s.crack.enabled = true;
+    if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("path_threshold"))
+      s.crack.path_threshold = c->in_range("path_threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("min_piece_fraction"))
+      s.crack.min_piece_fraction = c->in_range("min_piece_fraction", *v, 0.0, 0.5, true, false);
+    if (auto v = c->optional_number("speed_window")) s.crack.speed_window = c->positive("speed_window", *v);
+    if (c->has("exclude"))
+      for (const auto& shape : c->table_or_tables("exclude")) s.crack.exclude.push_back(read_shape(shape, s.dimension));
+    c->finish();
+  }
+  for (const auto& t : root.tables("observe")) {
+    ObserveSpec o;
+    o.key = t.path();
+    o.name = t.string("name");
+    if (!std::regex_match(o.name, std::regex("[A-Za-z0-9_]+"))) t.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
+    for (const auto& other : s.observes)
+      if (other.name == o.name) t.fail("name", "\"" + o.name + "\" is used by another [[observe]]");
+    o.point = t.numbers("point", s.dimension);
+    if (auto r = t.optional_number("radius")) o.radius = t.positive("radius", *r);
+    t.finish();
+    s.observes.push_back(o);
+    s.crack.enabled = true;
+  }
+}
+
 void read_output(const TomlReader& o, Scene& s) {
   s.output.frames = o.optional_integer("frames");
   s.output.every = o.optional_integer("every");
   if (s.output.frames && s.output.every) o.fail("frames", "give at most one of frames and every");
+  if (auto times = o.optional_numbers("frame_times", 0)) {
+    if (s.output.frames || s.output.every) o.fail("frame_times", "give at most one of frames, every and frame_times");
+    for (double t : *times)
+      if (t < 0.0) o.fail("frame_times", "must be ≥ 0 (times in seconds)");
+    s.output.frame_times = *times;
+  }
   if (s.output.frames && *s.output.frames < 1) o.fail("frames", "must be ≥ 1");
   if (s.output.every && *s.output.every < 1) o.fail("every", "must be ≥ 1");
   s.output.history_every = o.optional_integer("history_every");
@@ -396,6 +440,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_time(root.table("time"), s);
   read_boundaries(root, s);
   read_loads(root, s);
+  read_crack(root, s);
   if (auto o = root.optional_table("output")) read_output(*o, s);
   else s.output.fields = s.is_mpm() ? mpm_field_names() : field_names();
   root.finish();
