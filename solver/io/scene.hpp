@@ -163,6 +163,9 @@ const std::vector<std::string>& mpm_field_names();
 class TomlReader;
 void read_mpm_material(const TomlReader& material, Scene& s);
 void read_mpm_options(const TomlReader& table, Scene& s);
+// Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,
+// displacement/analytic boundaries, non-box regions) for model type "mpm".
+void check_mpm_scene(const Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.
 Scene parse_scene(const std::string& path);

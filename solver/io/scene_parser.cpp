@@ -444,6 +444,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   if (auto o = root.optional_table("output")) read_output(*o, s);
   else s.output.fields = s.is_mpm() ? mpm_field_names() : field_names();
   root.finish();
+  if (s.is_mpm()) check_mpm_scene(s);
   return s;
 }
 

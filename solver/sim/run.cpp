@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "solver/sim/mpm_run.hpp"
 #include "solver/sim/pd_run.hpp"
 
 namespace pdmpm::sim {
@@ -9,6 +10,10 @@ namespace {
 
 template <int D>
 RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
+  if (scene.is_mpm()) {
+    auto setup = build_mpm<D>(scene);
+    return run_mpm<D>(scene, setup, options);
+  }
   auto setup = build_pd<D>(scene);
   return run_pd<D>(scene, setup, options);
 }
