@@ -137,6 +137,7 @@ struct Scene {
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
   bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
+  bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
 

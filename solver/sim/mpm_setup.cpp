@@ -55,9 +55,9 @@ void add_boundary(const io::Scene& s, std::size_t index, MpmSetup<D>& out) {
       t.min = to_vec<D>(r.min);
       t.max = to_vec<D>(r.max);
       t.traction_field = [value, scale](const Vec<D>& X, double time) {
-        Vec<D> out;
-        for (int a = 0; a < D; ++a) out[a] = scale * (*value[a])(variables<D>(X, time));
-        return out;
+        Vec<D> traction;
+        for (int a = 0; a < D; ++a) traction[a] = scale * (*value[a])(variables<D>(X, time));
+        return traction;
       };
       out.settings.tractions.push_back(std::move(t));
     }

@@ -424,6 +424,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"model", s_.model->name()},
       {"influence", std::string(pd::name(sys.influence))},
       {"partial_volume", std::string(pd::name(sys.partial_volume))},
+      {"weighted_volume", sys.continuum_weighted_volume ? "continuum" : "discrete"},
       {"dimension", D},
       {"setting", std::string(pd::name(sys.setting))},
       {"spacing", sys.spacing()},

@@ -52,6 +52,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
   sys.measure = D == 3 ? 1.0 : s.measure;
   sys.influence = s.influence;
   sys.partial_volume = s.partial_volume;
+  sys.continuum_weighted_volume = s.continuum_weighted_volume;
 
   std::vector<bc::SymmetryPlane> planes;
   for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
