@@ -287,17 +287,7 @@ RunResult MpmRun<D>::run() {
   if (fields_) fields_->close();
   history_.reset();
 
-  RunResult r;
-  r.status = status_;
-  r.message = message_;
-  r.summary = summary(seconds_since(t0));
-  {
-    std::ofstream js(out_->path("summary.json"));
-    js << r.summary.dump(2) << '\n';
-  }
-  out_->commit();
-  r.exit_code = status_ == "completed" ? 0 : 3;
-  return r;
+  return commit_run(*out_, status_, message_, summary(seconds_since(t0)));
 }
 
 }  // namespace
