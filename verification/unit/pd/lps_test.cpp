@@ -8,6 +8,16 @@
 namespace pdmpm::pd {
 namespace {
 
+// The same smooth, non-affine displacement field in two systems on one lattice.
+void set_smooth_non_affine_field(System<3>& a, System<3>& b) {
+  for (Index i = 0; i < a.n_real(); ++i) {
+    const Vec<3> x = a.particles.x0[i];
+    const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
+    a.particles.u[i] = u;
+    b.particles.u[i] = u;
+  }
+}
+
 // Seed 001 §5 (after [3]): with ω = 1/|ξ| and ν = 1/4, LPS coincides with PMB
 // (constant micromodulus) away from boundaries: A = 3K − 5G = 0 leaves the pair
 // force 2·15G (δ/|ξ|) e / m, which is PMB's c e/|ξ| with c = 30Gδ/m = 12E/(πδ⁴).
@@ -25,12 +35,7 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
   lps.initialise(lps_sys);
   Pmb<3> pmb;
   pmb.initialise(pmb_sys);
-  for (Index i = 0; i < lps_sys.n_real(); ++i) {
-    const Vec<3> x = lps_sys.particles.x0[i];
-    const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
-    lps_sys.particles.u[i] = u;
-    pmb_sys.particles.u[i] = u;
-  }
+  set_smooth_non_affine_field(lps_sys, pmb_sys);
   lps.compute_forces(lps_sys, {});
   pmb.compute_forces(pmb_sys, {});
   // PMB's c uses the continuum m, LPS the discrete one: compare up to m_discrete/m_∞.
@@ -66,13 +71,8 @@ TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {
   pmb.initialise(pmb_sys);
   const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
   double worst = 0.0, scale = 0.0;
-  for (Index i = 0; i < lps_sys.n_real(); ++i) {
-    EXPECT_EQ(lps.weighted_volume()[i], m_cont);
-    const Vec<3> x = lps_sys.particles.x0[i];
-    const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
-    lps_sys.particles.u[i] = u;
-    pmb_sys.particles.u[i] = u;
-  }
+  for (Index i = 0; i < lps_sys.n_real(); ++i) EXPECT_EQ(lps.weighted_volume()[i], m_cont);
+  set_smooth_non_affine_field(lps_sys, pmb_sys);
   lps.compute_forces(lps_sys, {});
   pmb.compute_forces(pmb_sys, {});
   for (Index i = 0; i < lps_sys.n_real(); ++i) {
