@@ -3,7 +3,7 @@
 // target as in verification/scenes/disk_impact_elastic.toml (cylinder R = H = 5 mm,
 // bottom face held, rigid sphere, LAMMPS' contact and indenter rules, no bond
 // breaking), on a lattice `refine` times finer with δ = 3.0002 Δx kept, so
-// refine = 3 gives 94 k particles and 10⁷ bond sides — the size issue 6 names.
+// refine = 3 gives 87 k particles and 9.9·10⁶ bond sides — the size issue 6 names.
 //  - PMB: peri/pmb (constant ω); LPS: peri/lps (ω = 1/|ξ|, ν = 1/4: the same E, K);
 //  - the sphere starts 0.1 mm inside the top face, so a run of a few steps moves
 //    the body (from the scene's start, 0.05 mm above, it would not touch it);
