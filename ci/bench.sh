@@ -5,7 +5,7 @@
 # thread scaling and roofline, pdmpm next to LAMMPS; build/results/bench/perf/,
 # gates of the "performance" report section), then regenerate the report.
 #
-#   ci/bench.sh                  # the full measurement (about 6 min on 2 cores, plus the build)
+#   ci/bench.sh                  # the full measurement (about 4 min on 2 cores, plus the build)
 #   QUICK=1 ci/bench.sh          # a short check that everything runs (small problem, few repetitions)
 #   PERF_ARGS="--reps 9" ci/bench.sh   # extra options for build/benchmarks/pdmpm_perf (see --help)
 #
