@@ -443,6 +443,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"threads", omp_get_max_threads()},
       {"wall_time_s", wall},
       {"force_time_s", state_.force_seconds()},
+      {"contact_time_s", state_.contact_seconds()},
       {"bond_updates_per_second",
        state_.force_seconds() > 0 ? static_cast<double>(state_.bond_evaluations()) / state_.force_seconds() : 0.0},
       {"peak_memory_bytes", peak_memory_bytes()},
