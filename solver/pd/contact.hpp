@@ -3,8 +3,10 @@
 // bond (seed 001 eqs 6.2–6.4; with `bonded_pairs`, between all pairs, as in
 // LAMMPS' peri/pmb): for |y| < d_ij,
 //   f = (c_s/δ)(|y| − d_ij) y/|y| V_j,  c_s = 15 c,  d_ij = min(0.9|ξ|, 1.35Δx).
-// A separate loop over a cell list of the deformed positions, run only when a
-// scene enables contact.
+// A separate loop, run only when a scene enables contact, over a Verlet list:
+// the pairs closer than reach + skin, rebuilt from a cell list of the deformed
+// positions once any particle has moved more than skin/2 since the last build
+// (until then no pair outside the list can come within reach).
 #include "solver/core/cell_list.hpp"
 #include "solver/pd/system.hpp"
 
@@ -29,8 +31,14 @@ class ShortRangeContact {
  private:
   ContactParameters prm_;
   double c_;
+  bool list_is_stale(double skin) const;
+  void build_list(double radius);
+
   core::CellList<D> cells_;
-  std::vector<Vec<D>> y_;
+  std::vector<Vec<D>> y_, y_at_build_;  // positions of real and ghost particles: now, at the last build
+  Index real_ = 0;
+  std::vector<std::int64_t> start_;  // CSR of candidate partners per real particle
+  std::vector<Index> partner_;
 };
 
 }  // namespace pdmpm::pd
