@@ -372,6 +372,46 @@ TEST(FullSphericalWave, PaperResolution) {
                                      "fades. Grey: no particle (the cavity)."}});
     }
 
+  // Closing note: the measured errors of all eight cases in both readings, against
+  // the paper's anchors, with the phase speed that explains them.
+  {
+    std::ostringstream h;
+    h.precision(3);
+    h << "<p>Measured at the paper's resolution (N = 531414 in both readings, δ = 3.015 Δx, source \"layer\", partial "
+         "volume seed001), errors at t = 3×10<sup>−5</sup> s (at 7×10<sup>−5</sup> s in brackets), e<sub>2</sub> = relative L2, "
+         "e<sub>∞</sub> = max error / w<sub>0</sub>; c(Ω)/c<sub>p</sub> = phase speed of the driven wave on the lattice along x "
+         "with the run's Δt.</p><table><tr><th>case</th><th>octant Δx = 0.5 cm: e<sub>2</sub></th><th>e<sub>∞</sub></th>"
+         "<th>c(Ω)/c<sub>p</sub></th><th>wall [s]</th><th>cube Δx = 1 cm: e<sub>2</sub></th><th>e<sub>∞</sub></th><th>c(Ω)/c<sub>p</sub></th>"
+         "<th>wall [s]</th></tr>";
+    double worst_rss = 0;
+    for (const auto& c : cases) {
+      h << "<tr><td>" << c.label << "</td>";
+      for (Reading rd : {Reading::octant, Reading::cube}) {
+        const auto& r = results.at(std::string(name(rd)) + "/" + c.key());
+        const auto d = dispersion(c, paper_spacing(rd), paper_ratio, pd::PartialVolume::seed001, r.dt, t_compare);
+        h << "<td>" << 100 * r.metrics[2].l2 << " % (" << 100 * r.metrics[3].l2 << " %)</td><td>" << 100 * r.metrics[2].max << " % ("
+          << 100 * r.metrics[3].max << " %)</td><td>" << d.speed_ratio << "</td><td>" << r.stable_step_seconds + r.setup_seconds + r.run_seconds
+          << "</td>";
+        worst_rss = std::max(worst_rss, r.peak_rss_mb);
+      }
+      h << "</tr>";
+    }
+    const auto& lr = results.at("octant/lps_inverse_distance").metrics[2];
+    const auto& l1 = results.at("octant/lps_constant").metrics[2];
+    h << "</table><p>Peak resident memory of any case: " << worst_rss << " MB (2 OpenMP threads; wall times on a shared 2-core "
+      << "machine). Paper anchors (seed 001 §9; metric and reading not stated): LPS ω = 1/r 3.36 %, LPS ω = 1 4.05 %. Ours in the "
+      << "octant reading: e<sub>2</sub> " << 100 * lr.l2 << " % and " << 100 * l1.l2 << " %, i.e. " << lr.l2 / 0.0336 << " and "
+      << l1.l2 / 0.0405 << " times the paper's; e<sub>∞</sub> " << 100 * lr.max << " % and " << 100 * l1.max << " %. "
+      << "Why: at Δx = 0.5 cm the source's wavelength (≈ 6 cm for LPS) spans 12 spacings and δ = 1.5 cm is a quarter of it; the "
+      << "lattice's dispersion makes the driven wave travel a few per cent slow (c(Ω)/c<sub>p</sub> above; velocity Verlet at the "
+      << "stable step makes up part of it), and after the ~17 cm the wave has travelled by 3×10<sup>−5</sup> s the lag is a sizeable "
+      << "fraction of a wavelength, which an L2 norm over the whole wave counts in full (see the dispersion table: the lag alone "
+      << "predicts errors of the measured size). A pointwise error relative to the source amplitude w<sub>0</sub> weighs the "
+      << "well-resolved near field, where the wave has not yet lagged, and comes much closer to the paper's figures: the paper's "
+      << "metric is likely of that kind. The convergence section shows the error falling with Δx and what limits it at fixed m.</p>";
+    test::record_data(problem, "00_closing_note", {{"kind", "text"}, {"title", "Closing note: the eight cases at the paper's resolution"}, {"html", h.str()}});
+  }
+
   // Gates: the two qualitative claims of the seed, in the octant reading
   // (Δx = 0.5 cm, the finer of the two readings).
   double best_other = 1e9;
