@@ -144,11 +144,11 @@ TEST(FullConvergence, Study) {
       rows_a.push_back(row(p));
       x.push_back(100 * dx), e.push_back(p.l2), el.push_back(p.l2_lattice);
     }
-    series_a.push_back({{"label", c.label}, {"x", x}, {"y", e}, {"style", "line"}});
-    series_al.push_back({{"label", c.label}, {"x", x}, {"y", el}, {"style", "line"}});
     // Orders over the three finest levels (the coarsest, 2.75 points per wavelength, is not resolved).
     const std::vector<double> xf(x.begin() + 1, x.end()), ef(e.begin() + 1, e.end()), elf(el.begin() + 1, el.end());
     const double p_true = fitted_order(xf, ef), p_lat = fitted_order(xf, elf);
+    series_a.push_back({{"label", c.label + " (p = " + std::to_string(p_true).substr(0, 4) + ")"}, {"x", x}, {"y", e}, {"style", "line"}});
+    series_al.push_back({{"label", c.label + " (p = " + std::to_string(p_lat).substr(0, 4) + ")"}, {"x", x}, {"y", el}, {"style", "line"}});
     const double p_last = std::log(el[2] / el[3]) / std::log(2.0);
     order_rows.push_back({c.label, p_true, p_lat, p_last, e.back(), el.back()});
     const bool monotone = el[1] > el[2] && el[2] > el[3];
@@ -212,8 +212,9 @@ TEST(FullConvergence, Study) {
         rows_c.push_back(row(p));
         d.push_back(100 * p.delta()), e.push_back(p.l2), el.push_back(p.l2_lattice);
       }
-      series_c.push_back({{"label", c.label + ", m = " + std::to_string(m).substr(0, 5)}, {"x", d}, {"y", e}, {"style", "line"}});
       const std::vector<double> df(d.begin() + 1, d.end()), ef(e.begin() + 1, e.end()), elf(el.begin() + 1, el.end());
+      series_c.push_back({{"label", c.label + ", m = " + std::to_string(m).substr(0, 5) + " (p = " + std::to_string(fitted_order(df, ef)).substr(0, 4) + ")"},
+                          {"x", d}, {"y", e}, {"style", "line"}});
       order_c.push_back({c.label, m, fitted_order(df, ef), fitted_order(df, elf), e.back(), el.back()});
     }
   test::record_data(problem, "08_fixed_m_table", {{"kind", "table"}, {"title", "(c) δ → 0 at fixed m: error at t = 3×10⁻⁵ s"}, {"columns", row_columns},
