@@ -56,10 +56,7 @@ struct Case {
   std::string model;  // "pmb" | "lps"
   pd::Influence influence = pd::Influence::constant;
   double nu = 0.25;
-  std::string key() const {
-    std::string k = model + "_" + std::string(pd::name(influence));
-    return k;
-  }
+  std::string key() const { return model + "_" + std::string(pd::name(influence)); }
 };
 
 // The eight cases of seed 001 §9: PMB (ν = 1/4) with the six ω of table 4.1,
@@ -369,7 +366,7 @@ struct Dispersion {
 inline Dispersion dispersion(const Case& c, double spacing, double ratio, pd::PartialVolume pv, double dt, double t,
                              const Vec<3>& dir = Vec<3>(1, 0, 0)) {
   Dispersion out;
-  const double M = c.nu == 0.25 ? 240e9 : youngs * (1 - c.nu) / ((1 + c.nu) * (1 - 2 * c.nu));
+  const double M = youngs * (1 - c.nu) / ((1 + c.nu) * (1 - 2 * c.nu));  // P-wave modulus λ + 2G
   const double cp = std::sqrt(M / density), Omega = 2.0 * std::numbers::pi / period;
   const double k_small = 1e-3 / (ratio * spacing);
   out.long_wave_ratio = std::sqrt(omega_squared(c, spacing, ratio, pv, k_small, dir)) / k_small / cp;
