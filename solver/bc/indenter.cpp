@@ -12,8 +12,13 @@ Vec<D> Indenter<D>::add_forces(core::Particles<D>& p, double t) const {
     if (r >= radius || r == 0.0) continue;
     const double magnitude = stiffness * (radius - r) * (radius - r);
     const Vec<D> F = (magnitude / r) * d;
-    p.b[i] += F / p.volume[i];
-    total -= F;
+    if (force_density) {
+      p.b[i] += F;
+      total -= F * p.volume[i];
+    } else {
+      p.b[i] += F / p.volume[i];
+      total -= F;
+    }
   }
   return total;
 }

@@ -1,7 +1,10 @@
 #pragma once
 // Rigid spherical (3D) / cylindrical (2D) indenter moving at constant velocity,
 // pushing particles with F = k (R − r)² along the outward normal for r < R
-// (SPEC disk_impact; the form of LAMMPS' fix indent). Force per particle in N.
+// (SPEC disk_impact; the form of LAMMPS' fix indent). F is a force per particle
+// in N, or with `force_density` a force density in N/m³: LAMMPS' PERI atoms
+// carry force densities (their "mass" is the density), so fix indent's k acts
+// per unit volume there.
 #include "solver/core/particles.hpp"
 
 namespace pdmpm::bc {
@@ -12,6 +15,7 @@ struct Indenter {
   Vec<D> velocity = Vec<D>::Zero();
   double radius = 0.0;
   double stiffness = 0.0;
+  bool force_density = false;
 
   Vec<D> center(double t) const { return center0 + t * velocity; }
   // Adds F/V_i to p.b of every particle inside the indenter at time t and

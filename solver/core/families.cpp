@@ -27,8 +27,9 @@ Families<D> Families<D>::build(const Particles<D>& p, double ratio) {
     count[i] = c;
   }
   for (Index i = 0; i < n; ++i) fam.offsets[i + 1] = fam.offsets[i] + count[i];
-  fam.neighbor.resize(fam.n_bonds());
-  fam.shape.resize(fam.n_bonds());
+  // Padding past the last bond: the SIMD kernels read whole blocks of 8 (masked).
+  fam.neighbor.assign(fam.n_bonds() + kBondPadding, 0);
+  fam.shape.assign(fam.n_bonds() + kBondPadding, 0);
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
     BondIndex b = fam.offsets[i];

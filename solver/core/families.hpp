@@ -10,6 +10,10 @@
 
 namespace pdmpm::core {
 
+// Entries past the last bond in every per-bond array (read, never used, by the
+// SIMD bond kernels, which load blocks of 8 bonds).
+inline constexpr BondIndex kBondPadding = 8;
+
 template <int D>
 struct Families {
   Stencil<D> stencil;

@@ -4,13 +4,12 @@
 #include <Eigen/Dense>
 #include <cstdint>
 
+#include "solver/core/index.hpp"
+
 namespace pdmpm {
 
 template <int D> using Vec = Eigen::Matrix<double, D, 1>;
 template <int D> using Mat = Eigen::Matrix<double, D, D>;
 template <int D> using IVec = Eigen::Matrix<std::int32_t, D, 1>;
-
-using Index = std::int32_t;      // particle index (families store int32 to save bytes per bond)
-using BondIndex = std::int64_t;  // position in the CSR bond arrays (10^9 bonds must fit)
 
 }  // namespace pdmpm

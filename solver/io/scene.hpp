@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/mpm/settings.hpp"
 #include "solver/pd/influence.hpp"
 #include "solver/pd/material.hpp"
 #include "solver/pd/partial_volume.hpp"
@@ -49,6 +50,7 @@ struct PrecrackSpec {
 struct IndenterSpec {
   std::vector<double> center, velocity;
   double radius = 0.0, stiffness = 0.0;
+  bool force_density = false;  // k (R − r)² is a force density (N/m³, LAMMPS' fix indent on PERI atoms), not a force
 };
 
 struct ProbeSpec {
@@ -61,6 +63,24 @@ struct ContactSpec {
   double stiffness_factor = 15.0;  // c_s = 15 c (seed 001 eq 6.3)
   double distance_factor = 0.9;    // d = min(0.9 |ξ|, 1.35 Δx) (seed 001 eq 6.4)
   double max_distance = 1.35;      // in units of Δx
+  bool bonded_pairs = false;       // also between bonded particles (LAMMPS peri/pmb's rule)
+};
+
+// Crack observables (solver/pd/crack_observables.hpp): enabled by a [crack] table
+// or any [[observe]] location.
+struct CrackSpec {
+  bool enabled = false;
+  double threshold = 0.5;
+  double path_threshold = 0.35;
+  double min_piece_fraction = 0.01;
+  double speed_window = 0.0;  // s; 0 → ten history intervals
+  std::vector<ShapeSpec> exclude;  // regions where no crack is detected
+};
+
+struct ObserveSpec {
+  std::string key, name;
+  std::vector<double> point;
+  double radius = 0.0;  // 0 → δ
 };
 
 enum class Integrator { verlet, adr };
@@ -81,8 +101,25 @@ struct TimeSpec {
 
 struct OutputSpec {
   std::optional<std::int64_t> frames, every;
+  std::vector<double> frame_times;  // frames at the steps nearest these times (plus first and last)
   std::optional<std::int64_t> history_every;
   std::vector<std::string> fields;
+};
+
+// Material point method options (model type "mpm"): the [mpm] table, and the
+// constitutive keys of [material]. Plain copies of mpm::Settings fields.
+struct MpmSpec {
+  mpm::ShapeFunction shape = mpm::ShapeFunction::gimp;
+  mpm::GimpDomain gimp_domain = mpm::GimpDomain::fixed;
+  mpm::UpdateScheme scheme = mpm::UpdateScheme::musl;
+  double flip = 1.0;
+  double cell_size = 0.0, cell_factor = 2.0;
+  int padding_cells = 3;
+  double damping_viscous = 0.0, damping_local = 0.0;
+  mpm::Nonlocal nonlocal;
+  mpm::MaterialModel constitutive = mpm::MaterialModel::linear_elastic;
+  double yield_stress = 0.0, tangent_modulus = 0.0;
+  mpm::Failure failure;
 };
 
 struct Scene {
@@ -99,7 +136,11 @@ struct Scene {
   std::string model = "pmb";
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
+  bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
   ContactSpec contact;
+  std::optional<MpmSpec> mpm;  // set when model = "mpm"
+
+  bool is_mpm() const { return model == "mpm"; }
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
@@ -108,11 +149,20 @@ struct Scene {
   std::vector<std::string> body_force;  // force density expressions, empty = none
   std::optional<IndenterSpec> indenter;
   std::vector<ProbeSpec> probes;
+  CrackSpec crack;
+  std::vector<ObserveSpec> observes;
   OutputSpec output;
 };
 
-// Field names `output.fields` may list.
+// Field names `output.fields` may list (PD models; MPM adds its own).
 const std::vector<std::string>& field_names();
+const std::vector<std::string>& mpm_field_names();
+
+// MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
+// (read from the material table's own reader) and the [mpm] table.
+class TomlReader;
+void read_mpm_material(const TomlReader& material, Scene& s);
+void read_mpm_options(const TomlReader& table, Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.
 Scene parse_scene(const std::string& path);

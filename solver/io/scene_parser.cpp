@@ -78,12 +78,16 @@ void read_discretization(const TomlReader& d, Scene& s) {
   s.spacing = d.positive("spacing", d.number("spacing"));
   const auto ratio = d.optional_number("horizon_ratio");
   const auto delta = d.optional_number("horizon");
-  if (ratio.has_value() == delta.has_value())
+  if (ratio.has_value() && delta.has_value())
     d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
-  s.delta = ratio ? *ratio * s.spacing : *delta;
-  if (ratio) d.in_range("horizon_ratio", *ratio, 1.0, 20.0, false, false);
-  if (s.delta < s.spacing * (1.0 - 1e-12)) d.fail(delta ? "horizon" : "horizon_ratio", "the horizon δ must be ≥ the spacing Δx (δ/Δx ≥ 1)");
-  if (s.delta > 20.0 * s.spacing) d.fail("horizon", "δ/Δx must be ≤ 20 (families would exceed the bond table)");
+  if (!ratio && !delta && !s.is_mpm())
+    d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
+  if (ratio || delta) {  // MPM alone needs no horizon
+    s.delta = ratio ? *ratio * s.spacing : *delta;
+    if (ratio) d.in_range("horizon_ratio", *ratio, 1.0, 20.0, false, false);
+    if (s.delta < s.spacing * (1.0 - 1e-12)) d.fail(delta ? "horizon" : "horizon_ratio", "the horizon δ must be ≥ the spacing Δx (δ/Δx ≥ 1)");
+    if (s.delta > 20.0 * s.spacing) d.fail("horizon", "δ/Δx must be ≤ 20 (families would exceed the bond table)");
+  }
   if (s.dimension == 2) {
     s.measure = d.positive("thickness", d.number("thickness"));
     if (d.has("area")) d.fail("area", "only for dimension = 1 (2D uses thickness)");
@@ -105,24 +109,37 @@ void read_discretization(const TomlReader& d, Scene& s) {
 
 void read_model(const TomlReader& m, Scene& s) {
   s.model = m.string("type");
-  bool known = false;
+  bool known = s.model == "mpm";
   std::string names;
   for (const auto& n : pd::model_names()) {
     known = known || n == s.model;
     names += (names.empty() ? "" : ", ") + n;
   }
-  if (!known) m.fail("type", "must be one of " + names + "; got \"" + s.model + "\"");
+  if (!known) m.fail("type", "must be one of " + names + ", mpm; got \"" + s.model + "\"");
+  if (s.is_mpm()) {
+    s.mpm.emplace();  // defaults; [material] and [mpm] fill it
+    for (const char* pd_only : {"influence", "damage", "contact"})
+      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (pmb, lps)");
+    m.finish();
+    return;
+  }
   if (auto w = m.optional_string("influence")) {
     auto inf = pd::parse_influence(*w);
     if (!inf) m.fail("influence", "must be one of " + pd::influence_names() + "; got \"" + *w + "\"");
     s.influence = *inf;
   }
   s.damage = m.boolean("damage", true);
+  if (auto bt = m.optional_string("break_timing")) {
+    if (*bt != "before_force" && *bt != "after_force")
+      m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
+    s.break_after_force = *bt == "after_force";
+  }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);
     if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
     if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
+    s.contact.bonded_pairs = c->boolean("bonded_pairs", false);
     c->finish();
   }
   m.finish();
@@ -133,8 +150,8 @@ void read_material(const TomlReader& m, Scene& s) {
   const auto E = m.optional_number("youngs_modulus");
   const auto K = m.optional_number("bulk_modulus");
   if (E.has_value() == K.has_value()) m.fail("youngs_modulus", "give exactly one of youngs_modulus and bulk_modulus");
-  const auto model = pd::make_model<3>(s.model);
-  const auto [lo, hi] = model->poisson_range(s.setting);
+  // MPM materials take any ν in (−1, ½); the PD models state their own range.
+  const auto [lo, hi] = s.is_mpm() ? std::pair{-1.0, 0.5} : pd::make_model<3>(s.model)->poisson_range(s.setting);
   const auto nu = m.optional_number("poissons_ratio");
   std::ostringstream fixed;
   fixed << lo;
@@ -152,6 +169,13 @@ void read_material(const TomlReader& m, Scene& s) {
   if (E) s.material.E = m.positive("youngs_modulus", *E);
   else s.material.E = 3.0 * m.positive("bulk_modulus", *K) * (1.0 - 2.0 * s.material.nu);
   if (!(s.material.E > 0.0)) m.fail("bulk_modulus", "gives E ≤ 0 with this Poisson's ratio");
+  if (s.is_mpm()) {
+    for (const char* pd_only : {"critical_stretch", "fracture_energy"})
+      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (MPM fails particles by [material.failure])");
+    read_mpm_material(m, s);
+    m.finish();
+    return;
+  }
   s.critical_stretch = m.optional_number("critical_stretch");
   s.fracture_energy = m.optional_number("fracture_energy");
   if (s.critical_stretch && s.fracture_energy) m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
@@ -165,6 +189,12 @@ void read_time(const TomlReader& t, Scene& s) {
   if (integ == "verlet") s.time.integrator = Integrator::verlet;
   else if (integ == "adr") s.time.integrator = Integrator::adr;
   else t.fail("integrator", "must be \"verlet\" (dynamic) or \"adr\" (adaptive dynamic relaxation, quasi-static); got \"" + integ + "\"");
+  if (s.is_mpm()) {
+    // MPM is explicit with its own grid-based stable step ([mpm] damping for quasi-static runs).
+    if (s.time.integrator != Integrator::verlet) t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
+    for (const char* pd_only : {"stable_step", "tolerance", "max_steps", "load_steps"})
+      if (t.has(pd_only)) t.fail(pd_only, "only for the peridynamic models");
+  }
   s.time.end_time = t.optional_number("end_time");
   s.time.steps = t.optional_integer("steps");
   if (s.time.integrator == Integrator::verlet) {
@@ -298,6 +328,10 @@ void read_loads(const TomlReader& root, Scene& s) {
     spec.velocity = ind->numbers("velocity", s.dimension);
     spec.radius = ind->positive("radius", ind->number("radius"));
     spec.stiffness = ind->positive("stiffness", ind->number("stiffness"));
+    const std::string law = ind->optional_string("law").value_or("force");
+    if (law != "force" && law != "force_density")
+      ind->fail("law", "must be \"force\" (k (R − r)² in N per particle) or \"force_density\" (in N/m³); got \"" + law + "\"");
+    spec.force_density = law == "force_density";
     ind->finish();
     s.indenter = spec;
   }
@@ -309,20 +343,57 @@ void read_loads(const TomlReader& root, Scene& s) {
   }
 }
 
+void read_crack(const TomlReader& root, Scene& s) {
+  if (auto c = root.optional_table("crack")) {
+    s.crack.enabled = true;
+    if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("path_threshold"))
+      s.crack.path_threshold = c->in_range("path_threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("min_piece_fraction"))
+      s.crack.min_piece_fraction = c->in_range("min_piece_fraction", *v, 0.0, 0.5, true, false);
+    if (auto v = c->optional_number("speed_window")) s.crack.speed_window = c->positive("speed_window", *v);
+    if (c->has("exclude"))
+      for (const auto& shape : c->table_or_tables("exclude")) s.crack.exclude.push_back(read_shape(shape, s.dimension));
+    c->finish();
+  }
+  for (const auto& t : root.tables("observe")) {
+    ObserveSpec o;
+    o.key = t.path();
+    o.name = t.string("name");
+    if (!std::regex_match(o.name, std::regex("[A-Za-z0-9_]+"))) t.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
+    for (const auto& other : s.observes)
+      if (other.name == o.name) t.fail("name", "\"" + o.name + "\" is used by another [[observe]]");
+    o.point = t.numbers("point", s.dimension);
+    if (auto r = t.optional_number("radius")) o.radius = t.positive("radius", *r);
+    t.finish();
+    s.observes.push_back(o);
+    s.crack.enabled = true;
+  }
+}
+
 void read_output(const TomlReader& o, Scene& s) {
   s.output.frames = o.optional_integer("frames");
   s.output.every = o.optional_integer("every");
   if (s.output.frames && s.output.every) o.fail("frames", "give at most one of frames and every");
+  if (auto times = o.optional_numbers("frame_times", 0)) {
+    if (s.output.frames || s.output.every) o.fail("frame_times", "give at most one of frames, every and frame_times");
+    for (double t : *times)
+      if (t < 0.0) o.fail("frame_times", "must be ≥ 0 (times in seconds)");
+    s.output.frame_times = *times;
+  }
   if (s.output.frames && *s.output.frames < 1) o.fail("frames", "must be ≥ 1");
   if (s.output.every && *s.output.every < 1) o.fail("every", "must be ≥ 1");
   s.output.history_every = o.optional_integer("history_every");
   if (s.output.history_every && *s.output.history_every < 1) o.fail("history_every", "must be ≥ 1");
-  s.output.fields = field_names();
+  const auto& allowed = s.is_mpm() ? mpm_field_names() : field_names();
+  s.output.fields = allowed;
   if (o.has("fields")) {
     s.output.fields = o.strings("fields");
+    std::string list;
+    for (const auto& f : allowed) list += (list.empty() ? "" : ", ") + f;
     for (const auto& f : s.output.fields)
-      if (std::find(field_names().begin(), field_names().end(), f) == field_names().end())
-        o.fail("fields", "unknown field \"" + f + "\"; allowed: displacement, velocity, damage, dilatation, stress, von_mises");
+      if (std::find(allowed.begin(), allowed.end(), f) == allowed.end())
+        o.fail("fields", "unknown field \"" + f + "\" for the " + s.model + " model; allowed: " + list);
   }
   o.finish();
 }
@@ -354,9 +425,14 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   s.description = head.optional_string("description").value_or("");
   head.finish();
 
-  read_discretization(root.table("discretization"), s);
   read_model(root.table("model"), s);
+  read_discretization(root.table("discretization"), s);
   read_material(root.table("material"), s);
+  if (s.is_mpm()) {
+    if (auto t = root.optional_table("mpm")) read_mpm_options(*t, s);
+  } else if (root.has("mpm")) {
+    root.fail("mpm", "only for model type = \"mpm\"");
+  }
   if (s.damage && !s.critical_stretch && !s.fracture_energy && root.table("model").has("damage"))
     root.fail("model.damage", "damage = true needs material.critical_stretch or material.fracture_energy");
   s.damage = s.damage && (s.critical_stretch || s.fracture_energy);
@@ -364,8 +440,9 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_time(root.table("time"), s);
   read_boundaries(root, s);
   read_loads(root, s);
+  read_crack(root, s);
   if (auto o = root.optional_table("output")) read_output(*o, s);
-  else s.output.fields = field_names();
+  else s.output.fields = s.is_mpm() ? mpm_field_names() : field_names();
   root.finish();
   return s;
 }

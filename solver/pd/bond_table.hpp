@@ -4,6 +4,8 @@
 // offsets, so these are looked up instead of stored per bond.
 #include <vector>
 
+#include "solver/pd/kernels/bond_kernels.hpp"
+
 #include "solver/core/stencil.hpp"
 #include "solver/pd/influence.hpp"
 #include "solver/pd/partial_volume.hpp"
@@ -13,10 +15,19 @@ namespace pdmpm::pd {
 template <int D>
 struct BondTable {
   std::vector<Vec<D>> xi;
-  std::vector<double> length;
+  std::vector<double> length;   // (length, weight, xi_component: + kernels::lanes zeros of padding)
   std::vector<double> omega;
   std::vector<double> beta;
   std::vector<double> weight;  // ω β
+  std::vector<double> xi_component[3];  // ξ by component (structure of arrays for the kernels)
+
+  kernels::BondShapeTable view() const {
+    kernels::BondShapeTable v{};
+    for (int a = 0; a < D; ++a) v.xi[a] = xi_component[a].data();
+    v.length = length.data();
+    v.weight = weight.data();
+    return v;
+  }
 
   static BondTable build(const core::Stencil<D>& st, double dx, double delta, Influence w, PartialVolume pv) {
     BondTable t;
@@ -28,6 +39,13 @@ struct BondTable {
       t.omega.push_back(influence(w, L, delta));
       t.beta.push_back(partial_volume(pv, L, delta, dx));
       t.weight.push_back(t.omega.back() * t.beta.back());
+      for (int a = 0; a < D; ++a) t.xi_component[a].push_back(x[a]);
+    }
+    // Padding for the kernels' whole-block loads (kernels::BondShapeTable).
+    for (int pad = 0; pad < kernels::lanes; ++pad) {
+      t.length.push_back(0.0);
+      t.weight.push_back(0.0);
+      for (int a = 0; a < D; ++a) t.xi_component[a].push_back(0.0);
     }
     return t;
   }

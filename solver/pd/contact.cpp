@@ -35,7 +35,7 @@ std::int64_t ShortRangeContact<D>::add_forces(System<D>& sys) {
       const double l = d.norm();
       if (l >= reach || l == 0.0) return;
       const double dij = std::min(prm_.distance_factor * (p.x0[j] - p.x0[i]).norm(), reach);
-      if (l >= dij || bonded(sys, i, j)) return;
+      if (l >= dij || (!prm_.bonded_pairs && bonded(sys, i, j))) return;
       fi += (k * (l - dij) * p.volume[j] / l) * d;
       ++pairs;
     });

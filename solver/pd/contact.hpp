@@ -1,6 +1,7 @@
 #pragma once
 // Short-range repulsion between particles that are not joined by an intact
-// bond (seed 001 eqs 6.2–6.4): for |y| < d_ij,
+// bond (seed 001 eqs 6.2–6.4; with `bonded_pairs`, between all pairs, as in
+// LAMMPS' peri/pmb): for |y| < d_ij,
 //   f = (c_s/δ)(|y| − d_ij) y/|y| V_j,  c_s = 15 c,  d_ij = min(0.9|ξ|, 1.35Δx).
 // A separate loop over a cell list of the deformed positions, run only when a
 // scene enables contact.
@@ -13,6 +14,7 @@ struct ContactParameters {
   double stiffness_factor = 15.0;
   double distance_factor = 0.9;
   double max_distance = 1.35;  // in Δx
+  bool bonded_pairs = false;   // repel bonded pairs too (LAMMPS peri/pmb does)
 };
 
 template <int D>

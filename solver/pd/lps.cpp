@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "solver/pd/bond_kinematics.hpp"
 #include "solver/pd/weighted_volume.hpp"
 
 namespace pdmpm::pd {
@@ -19,77 +18,48 @@ template <int D>
 void Lps<D>::initialise(const System<D>& sys) {
   k_ = lps_coefficients(sys.setting, sys.material);
   m_ = weighted_volumes(sys);
-  theta_.assign(sys.particles.size(), 0.0);
+  const auto n = m_.size();
+  theta_.assign(n, 0.0);
+  alpha_.assign(n, 0.0);
+  inv_m_.resize(n);
+  beta_.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;  // a particle without bonds feels no force
+    beta_[i] = k_.B * inv_m_[i];
+  }
 }
 
 template <int D>
 std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   auto& p = sys.particles;
-  const auto& fam = sys.families;
-  const auto& t = sys.table;
   const Index n = p.n_real;
-  const double s0 = req.critical_stretch;
-  const bool breaking = req.break_bonds;
-  std::uint8_t* broken = sys.broken.data();
-  const Index* nbr = fam.neighbor.data();
-  const std::uint16_t* shape = fam.shape.data();
-  const Vec<D>* u = p.u.data();
-  const double* vol = p.volume.data();
-  const double* m = m_.data();
-  double* theta = theta_.data();
-  std::int64_t newly_broken = 0;
-
-  // Pass 1: break bonds, then dilatation over the bonds still intact.
-#pragma omp parallel for schedule(static) reduction(+ : newly_broken)
-  for (Index i = 0; i < n; ++i) {
-    double sum = 0.0;
-    const Vec<D> ui = u[i];
-    for (BondIndex b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {
-      if (broken[b]) continue;
-      const Index j = nbr[b];
-      const int k = shape[b];
-      const double L = t.length[k];
-      const auto bond = deform<D>(t.xi[k], L, u[j] - ui);
-      if (breaking && bond.e >= s0 * L) {
-        broken[b] = 1;
-        ++newly_broken;
-        continue;
-      }
-      sum += t.weight[k] * L * bond.e * vol[j];
-    }
-    theta[i] = m[i] > 0.0 ? k_.d * sum / m[i] : 0.0;
-  }
-  for (Index g = 0; g < p.n_ghost(); ++g) theta[n + g] = theta[p.ghost_owner[g]];
-
-  // Pass 2: pair forces (t_ij + t_ji) β V_j M_ij.
-  const double A = k_.A, B = k_.B;
-  std::vector<double>* energy = req.energy;
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    Vec<D> fi = Vec<D>::Zero();
-    double dev = 0.0;
-    const Vec<D> ui = u[i];
-    const double inv_mi = m[i] > 0.0 ? 1.0 / m[i] : 0.0;
-    const double th_i = theta[i];
-    for (BondIndex b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {
-      if (broken[b]) continue;
-      const Index j = nbr[b];
-      const int k = shape[b];
-      const double L = t.length[k];
-      const auto bond = deform<D>(t.xi[k], L, u[j] - ui);
-      const double inv_mj = m[j] > 0.0 ? 1.0 / m[j] : 0.0;
-      const double t_ij = (A * th_i * L + B * bond.e) * inv_mi;
-      const double t_ji = (A * theta[j] * L + B * bond.e) * inv_mj;
-      fi += ((t_ij + t_ji) * t.weight[k] * vol[j] / bond.l) * bond.y;
-      if (energy) {
-        const double ed = bond.e - k_.gamma * th_i * L;
-        dev += t.weight[k] * ed * ed * vol[j];
-      }
-    }
-    p.f[i] = fi;
-    if (energy) (*energy)[i] = 0.5 * k_.kappa * th_i * th_i + 0.5 * B * inv_mi * dev;
-  }
-  return newly_broken;
+  if (req.energy) req.energy->resize(n);
+  kernels::LpsArgs a;
+  a.fam = sys.family_view();
+  a.table = sys.table.view();
+  a.u = p.u.data()->data();
+  a.volume = p.volume.data();
+  a.m = m_.data();
+  a.theta = theta_.data();
+  a.alpha = alpha_.data();
+  a.beta = beta_.data();
+  a.f = p.f.data()->data();
+  a.energy = req.energy ? req.energy->data() : nullptr;
+  a.A = k_.A;
+  a.B = k_.B;
+  a.kappa = k_.kappa;
+  a.gamma = k_.gamma;
+  a.d = k_.d;
+  a.breaking = req.break_bonds;
+  a.s0 = req.critical_stretch;
+  a.after_force = req.break_after_force;
+  // Pass 1: break bonds, dilatation over the intact ones; ghosts copy their owner's.
+  std::int64_t newly = kernels::lps_dilatation<D>(a);
+  for (Index g = 0; g < p.n_ghost(); ++g) theta_[n + g] = theta_[p.ghost_owner[g]];
+  for (Index i = 0; i < p.size(); ++i) alpha_[i] = k_.A * theta_[i] * inv_m_[i];
+  // Pass 2: pair forces.
+  newly += kernels::lps_forces<D>(a);
+  return newly;
 }
 
 template <int D>

@@ -24,6 +24,7 @@ class Lps final : public Model<D> {
   LpsCoefficients k_{};
   std::vector<double> m_;      // weighted volume, real + ghosts
   std::vector<double> theta_;  // dilatation of the last evaluation, real + ghosts
+  std::vector<double> inv_m_, alpha_, beta_;  // 1/m, Aθ/m, B/m per particle
 };
 
 }  // namespace pdmpm::pd

@@ -14,6 +14,9 @@ namespace pdmpm::pd {
 struct ForceRequest {
   bool break_bonds = false;        // apply the critical-stretch rule this evaluation
   double critical_stretch = 0.0;   // s₀
+  // false: a bond with s ≥ s₀ breaks before it acts (pdmpm's rule); true: it acts
+  // once more in this evaluation and breaks if s > s₀ (LAMMPS' PERI rule).
+  bool break_after_force = false;
   std::vector<double>* energy = nullptr;  // if set: strain energy density W_i of each real particle
 };
 

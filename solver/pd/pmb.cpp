@@ -1,6 +1,5 @@
 #include "solver/pd/pmb.hpp"
 
-#include "solver/pd/bond_kinematics.hpp"
 #include "solver/pd/constants.hpp"
 
 namespace pdmpm::pd {
@@ -21,45 +20,19 @@ void Pmb<D>::initialise(const System<D>& sys) {
 template <int D>
 std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   auto& p = sys.particles;
-  const auto& fam = sys.families;
-  const auto& t = sys.table;
-  const Index n = p.n_real;
-  const double c = c_;
-  const double s0 = req.critical_stretch;
-  const bool breaking = req.break_bonds;
-  std::vector<double>* energy = req.energy;
-  std::uint8_t* broken = sys.broken.data();
-  const Index* nbr = fam.neighbor.data();
-  const std::uint16_t* shape = fam.shape.data();
-  const Vec<D>* u = p.u.data();
-  const double* vol = p.volume.data();
-  std::int64_t newly_broken = 0;
-
-#pragma omp parallel for schedule(static) reduction(+ : newly_broken)
-  for (Index i = 0; i < n; ++i) {
-    Vec<D> fi = Vec<D>::Zero();
-    double wi = 0.0;
-    const Vec<D> ui = u[i];
-    for (BondIndex b = fam.offsets[i]; b < fam.offsets[i + 1]; ++b) {
-      if (broken[b]) continue;
-      const Index j = nbr[b];
-      const int k = shape[b];
-      const double L = t.length[k];
-      const auto bond = deform<D>(t.xi[k], L, u[j] - ui);
-      const double s = bond.e / L;
-      if (breaking && s >= s0) {
-        broken[b] = 1;
-        ++newly_broken;
-        continue;
-      }
-      const double cw = c * t.weight[k] * vol[j];
-      fi += (cw * s / bond.l) * bond.y;
-      if (energy) wi += 0.25 * cw * s * s * L;  // ½ Σ_j (c ω s² |ξ| / 2) β V_j
-    }
-    p.f[i] = fi;
-    if (energy) (*energy)[i] = wi;
-  }
-  return newly_broken;
+  if (req.energy) req.energy->resize(p.n_real);
+  kernels::PmbArgs a;
+  a.fam = sys.family_view();
+  a.table = sys.table.view();
+  a.u = p.u.data()->data();
+  a.volume = p.volume.data();
+  a.f = p.f.data()->data();
+  a.energy = req.energy ? req.energy->data() : nullptr;
+  a.c = c_;
+  a.breaking = req.break_bonds;
+  a.s0 = req.critical_stretch;
+  a.after_force = req.break_after_force;
+  return kernels::pmb_forces<D>(a);
 }
 
 template <int D>

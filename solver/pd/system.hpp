@@ -11,6 +11,8 @@
 
 namespace pdmpm::pd {
 
+static_assert(core::kBondPadding >= kernels::lanes, "bond arrays must be padded for whole-block kernel loads");
+
 template <int D>
 struct System {
   core::Particles<D> particles;
@@ -28,11 +30,15 @@ struct System {
   double spacing() const { return particles.lattice.spacing; }
   Index n_real() const { return particles.n_real; }
 
+  kernels::FamilyView family_view() {
+    return {families.n_owners(), families.stencil.size(), families.offsets.data(), families.neighbor.data(), families.shape.data(), broken.data()};
+  }
+
   // Build families and the bond table for the current particles.
   void connect() {
     families = core::Families<D>::build(particles, family_ratio(partial_volume, delta, spacing()));
     table = BondTable<D>::build(families.stencil, spacing(), delta, influence, partial_volume);
-    broken.assign(families.n_bonds(), 0);
+    broken.assign(families.n_bonds() + core::kBondPadding, 0);
   }
 };
 

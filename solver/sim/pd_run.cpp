@@ -1,12 +1,15 @@
 #include "solver/sim/pd_run.hpp"
 
 #include <omp.h>
+#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include "solver/core/error.hpp"
@@ -14,6 +17,7 @@
 #include "solver/io/history_writer.hpp"
 #include "solver/io/output_directory.hpp"
 #include "solver/io/progress.hpp"
+#include "solver/pd/crack_observables.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/pd/stress.hpp"
 #include "solver/sim/dynamic_relaxation.hpp"
@@ -24,6 +28,13 @@ namespace pdmpm::sim {
 namespace {
 
 const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
+
+// Peak resident memory of this process so far (bytes).
+double peak_memory_bytes() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_maxrss) * 1024.0;
+}
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -70,7 +81,95 @@ class PdRun {
   std::unique_ptr<io::HistoryWriter> history_;
   std::unique_ptr<io::FieldsWriter> fields_;
   std::unique_ptr<io::Progress> progress_;
+  std::optional<pd::CrackObservables<D>> crack_;
 };
+
+// Crack observables as history columns and summary metrics (definitions in
+// solver/pd/crack_observables.hpp).
+template <int D>
+std::vector<std::string> crack_columns(const pd::CrackObservables<D>& c) {
+  std::vector<std::string> cols{"cracked_particles", "components", "pieces", "cracks"};
+  for (int a = 0; a < D; ++a) cols.push_back(std::string("crack_tip_") + axis_name(a));
+  cols.insert(cols.end(), {"crack_extent", "crack_angle_deg", "crack_speed", "crack_overall_angle_deg"});
+  for (const auto& loc : c.locations()) cols.push_back("broken_bonds_" + loc.name);
+  return cols;
+}
+
+template <int D>
+void crack_values(const pd::CrackObservables<D>& c, std::vector<double>& row) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::size_t active = 0;
+  for (const auto& p : c.paths()) active += !p.ended;
+  row.insert(row.end(), {static_cast<double>(c.cracked()), static_cast<double>(c.components()),
+                         static_cast<double>(c.pieces()), static_cast<double>(active)});
+  const auto* lead = c.leading();
+  for (int a = 0; a < D; ++a) row.push_back(lead ? lead->tip.back()[a] : nan);
+  row.push_back(lead ? lead->extent.back() : 0.0);
+  row.push_back(lead ? lead->angle_deg() : nan);
+  row.push_back(lead ? lead->speed.back() : nan);
+  row.push_back(c.cracked() >= 2 ? c.overall_angle_deg() : nan);
+  for (std::size_t k = 0; k < c.locations().size(); ++k) row.push_back(static_cast<double>(c.broken_at(k)));
+}
+
+template <int D>
+nlohmann::json crack_summary(const pd::CrackObservables<D>& c, const pd::System<D>& sys) {
+  auto opt = [](std::optional<double> v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
+  auto vec = [](const Vec<D>& v) {
+    std::vector<double> out(v.data(), v.data() + D);
+    return out;
+  };
+  nlohmann::json j;
+  j["threshold"] = c.settings().threshold;
+  j["path_threshold"] = c.settings().path_threshold;
+  j["min_piece_fraction"] = c.settings().min_piece_fraction;
+  j["rayleigh_speed"] = pd::rayleigh_speed(sys.material, sys.setting);
+  j["speed_window"] = c.speed_window();
+  j["initiation_time"] = opt(c.initiation_time());
+  // Where cracking started: the particles cracked at the initiation time.
+  nlohmann::json sites = nlohmann::json::array();
+  for (Index i : c.initiation_particles()) sites.push_back(vec(sys.particles.x0[i]));
+  j["initiation_sites"] = sites;
+  j["separation_time"] = opt(c.separation_time());
+  j["components"] = c.components();
+  j["pieces"] = c.pieces();
+  j["initial_pieces"] = c.initial_pieces();
+  j["cracked_particles"] = c.cracked();
+  j["overall_angle_deg"] = c.overall_angle_deg();
+  j["overall_angle_at_separation_deg"] =
+      std::isfinite(c.separation_angle_deg()) ? nlohmann::json(c.separation_angle_deg()) : nlohmann::json(nullptr);
+  j["max_speed"] = c.max_speed();
+  nlohmann::json loc = nlohmann::json::object();
+  for (std::size_t k = 0; k < c.locations().size(); ++k) {
+    const auto& l = c.locations()[k];
+    loc[l.name] = {{"point", vec(l.point)}, {"radius", l.radius}, {"first_bond_failure", opt(c.first_failure(k))},
+                   {"broken_bonds", c.broken_at(k)}};
+  }
+  j["locations"] = loc;
+  nlohmann::json cracks = nlohmann::json::array();
+  for (const auto& p : c.paths()) {
+    nlohmann::json path = {{"t", p.time}, {"extent", p.extent}};
+    for (int a = 0; a < D; ++a) {
+      std::vector<double> xa;
+      for (const auto& tip : p.tip) xa.push_back(tip[a]);
+      path[axis_name(a)] = xa;
+    }
+    std::vector<nlohmann::json> speed;
+    for (double v : p.speed) speed.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+    path["speed"] = speed;
+    cracks.push_back({{"origin", vec(p.origin)},
+                      {"start_time", p.time.front()},
+                      {"last_time", p.time.back()},
+                      {"ended", p.ended},
+                      {"members", p.members},
+                      {"tip", vec(p.tip.back())},
+                      {"extent", p.extent.back()},
+                      {"angle_deg", p.angle_deg()},
+                      {"max_speed", p.max_speed()},
+                      {"path", path}});
+  }
+  j["cracks"] = cracks;
+  return j;
+}
 
 template <int D>
 void PdRun<D>::choose_time_step() {
@@ -116,6 +215,15 @@ void PdRun<D>::plan_outputs() {
   energy_every_ = std::min<std::int64_t>(history_every_, 10);
   if (scene_.output.every) {
     for (std::int64_t s = 0; s <= total_steps_; s += *scene_.output.every) frame_steps_.push_back(s);
+  } else if (!scene_.output.frame_times.empty()) {
+    // The step nearest each requested time (ADR: t is the load factor, one per load step).
+    frame_steps_.push_back(0);
+    for (double t : scene_.output.frame_times) {
+      const double per_step = scene_.time.integrator == io::Integrator::verlet ? dt_ : 1.0 / static_cast<double>(total_steps_);
+      frame_steps_.push_back(std::clamp<std::int64_t>(std::llround(t / per_step), 0, total_steps_));
+    }
+    std::sort(frame_steps_.begin(), frame_steps_.end());
+    frame_steps_.erase(std::unique(frame_steps_.begin(), frame_steps_.end()), frame_steps_.end());
   } else {
     const std::int64_t frames = scene_.output.frames.value_or(std::min<std::int64_t>(11, total_steps_ + 1));
     for (std::int64_t k = 0; k < frames; ++k)
@@ -143,6 +251,11 @@ void PdRun<D>::start_outputs() {
     for (const char* q : {"u", "v"})
       for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
   if (scene_.time.integrator == io::Integrator::adr) cols.insert(cols.end(), {"adr_iterations", "adr_residual"});
+  if (s_.crack) {
+    crack_.emplace(s_.system, *s_.crack, s_.locations, s_.crack_exclude);
+    const auto more = crack_columns(*crack_);
+    cols.insert(cols.end(), more.begin(), more.end());
+  }
   history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), cols);
   if (opt_.write_fields)
     fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", D);
@@ -196,6 +309,10 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
   if (scene_.time.integrator == io::Integrator::adr) {
     row.push_back(static_cast<double>(relax_.iterations));
     row.push_back(relax_.residual);
+  }
+  if (crack_) {
+    crack_->sample(s_.system, phi, t);
+    crack_values(*crack_, row);
   }
   history_->write_row(row);
 }
@@ -354,6 +471,9 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"force_time_s", state_.force_seconds()},
       {"bond_updates_per_second",
        state_.force_seconds() > 0 ? static_cast<double>(state_.bond_evaluations()) / state_.force_seconds() : 0.0},
+      {"peak_memory_bytes", peak_memory_bytes()},
+      {"bytes_per_bond_side",
+       (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
       {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
       {"metrics",
        {{"broken_bonds", state_.broken_bonds()},
@@ -366,6 +486,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
         {"energy_error", ke_ + u_ - e0_ - work_},
         {"critical_stretch", s_.critical_stretch}}},
       {"provenance", {{"git_sha", PDMPM_GIT_SHA}, {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS}}}};
+  if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;
     j["metrics"]["adr_residual"] = relax_.residual;

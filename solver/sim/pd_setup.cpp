@@ -80,6 +80,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
   out.model = pd::make_model<D>(s.model);
   out.model->initialise(sys);
   out.damage = s.damage;
+  out.break_after_force = s.break_after_force;
   if (s.damage)
     out.critical_stretch = s.critical_stretch ? *s.critical_stretch
                                               : pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy,
@@ -115,11 +116,13 @@ PdSetup<D> build_pd(const io::Scene& s) {
     ind.velocity = to_vec<D>(s.indenter->velocity);
     ind.radius = s.indenter->radius;
     ind.stiffness = s.indenter->stiffness;
+    ind.force_density = s.indenter->force_density;
     out.indenter = ind;
   }
   if (s.contact.enabled) {
     const double c = pd::pmb_micromodulus(pd::Influence::constant, s.setting, s.material, s.delta, sys.measure);
-    out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor, s.contact.max_distance}, c);
+    out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor, s.contact.max_distance,
+                                               s.contact.bonded_pairs}, c);
   }
   for (std::size_t k = 0; k < s.probes.size(); ++k) {
     const Vec<D> x = to_vec<D>(s.probes[k].point);
@@ -132,6 +135,26 @@ PdSetup<D> build_pd(const io::Scene& s) {
     if (dist > s.spacing * std::sqrt(static_cast<double>(D)))
       throw InputError(s.file, "probe[" + std::to_string(k) + "].point", "is not inside the body (no particle within √D Δx)");
     out.probes.push_back({s.probes[k].name, best});
+  }
+  if (s.crack.enabled) {
+    out.crack = pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
+    out.crack_exclude.assign(static_cast<std::size_t>(sys.particles.n_real), 0);
+    if (!s.crack.exclude.empty()) {
+      const auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(s.crack.exclude), s.spacing);
+      if (selected.empty()) throw InputError(s.file, "crack.exclude", "selects no particle (check the region against the body)");
+      for (Index i : selected) out.crack_exclude[i] = 1;
+    }
+    for (const auto& o : s.observes) {
+      pd::NamedLocation<D> loc;
+      loc.name = o.name;
+      loc.point = to_vec<D>(o.point);
+      loc.radius = o.radius > 0.0 ? o.radius : s.delta;
+      for (Index i = 0; i < sys.particles.n_real; ++i)
+        if ((sys.particles.x0[i] - loc.point).norm() <= loc.radius * (1.0 + 1e-12)) loc.particles.push_back(i);
+      if (loc.particles.empty())
+        throw InputError(s.file, o.key + ".point", "no particle lies within the radius of this point (is it inside the body?)");
+      out.locations.push_back(std::move(loc));
+    }
   }
   return out;
 }

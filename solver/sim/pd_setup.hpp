@@ -13,6 +13,7 @@
 #include "solver/bc/indenter.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/pd/contact.hpp"
+#include "solver/pd/crack_observables.hpp"
 #include "solver/pd/model.hpp"
 
 namespace pdmpm::sim {
@@ -35,7 +36,12 @@ struct PdSetup {
   std::vector<Probe<D>> probes;
   double critical_stretch = 0.0;  // 0 when damage is off
   bool damage = false;
+  bool break_after_force = false;  // LAMMPS' bond-break timing (scene model.break_timing)
   std::int64_t precrack_cut = 0;  // bond sides cut by pre-cracks
+  // Crack observables, when the scene asks for them.
+  std::optional<pd::CrackSettings> crack;
+  std::vector<pd::NamedLocation<D>> locations;
+  std::vector<std::uint8_t> crack_exclude;  // per real particle: in a region excluded from crack detection
 };
 
 template <int D>

@@ -30,6 +30,7 @@ void PdState<D>::internal_forces(bool energy) {
   pd::ForceRequest req;
   req.break_bonds = s_.damage;
   req.critical_stretch = s_.critical_stretch;
+  req.break_after_force = s_.break_after_force;
   req.energy = energy ? &energy_ : nullptr;
   const double t0 = omp_get_wtime();
   broken_sides_ += s_.model->compute_forces(s_.system, req);

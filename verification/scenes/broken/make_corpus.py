@@ -97,6 +97,16 @@ CASES = {
     "empty_file": ("scene | missing", ""),
     "frames_zero": ("output.frames | must be ≥ 1", BASE + "\n[output]\nframes = 0\n"),
     "thickness_in_3d": ("discretization.plane | only for dimension = 2", replace("dimension = 2", "dimension = 3")),
+    "crack_threshold_above_one": ("crack.threshold | must be in (0, 1]", BASE + "\n[crack]\nthreshold = 1.5\n"),
+    "crack_unknown_key": ("crack.threshhold | unknown key", BASE + "\n[crack]\nthreshhold = 0.5\n"),
+    "crack_exclude_outside": ("crack.exclude | selects no particle", BASE + '\n[crack]\nexclude = { type = "box", min = [0.5, 0.5], max = [0.6, 0.6] }\n'),
+    "observe_outside": ("observe[0].point | no particle lies within", BASE + '\n[[observe]]\nname = "tip"\npoint = [1.0, 1.0]\n'),
+    "observe_same_name": ("observe[1].name | is used by another", BASE + '\n[[observe]]\nname = "tip"\npoint = [0.01, 0.005]\n\n[[observe]]\nname = "tip"\npoint = [0.011, 0.005]\n'),
+    "observe_negative_radius": ("observe[0].radius | must be > 0", BASE + '\n[[observe]]\nname = "tip"\npoint = [0.01, 0.005]\nradius = -1e-3\n'),
+    "unknown_break_timing": ("model.break_timing | before_force", replace('influence = "constant"', 'influence = "constant"\nbreak_timing = "later"')),
+    "unknown_indenter_law": ("indenter.law | force_density", BASE + '\n[indenter]\nradius = 0.002\ncenter = [0.01, 0.012]\nvelocity = [0.0, -10.0]\nstiffness = 1e17\nlaw = "pressure"\n'),
+    "frame_times_and_frames": ("output.frame_times | at most one of frames, every and frame_times", BASE + "\n[output]\nframes = 3\nframe_times = [1e-7]\n"),
+    "negative_frame_time": ("output.frame_times | must be ≥ 0", BASE + "\n[output]\nframe_times = [-1e-7]\n"),
 }
 
 

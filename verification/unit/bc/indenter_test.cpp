@@ -27,5 +27,21 @@ TEST(Indenter, PushesOutwardWithQuadraticForceAndReportsReaction) {
   EXPECT_EQ(ind.center(2.0), Vec<3>(0, 0, -1.5));
 }
 
+TEST(Indenter, ForceDensityLawActsPerUnitVolume) {
+  // LAMMPS' fix indent on PERI atoms: k (R − r)² is a force density; the reaction is Σ b V.
+  core::Lattice<3> lat;
+  core::Geometry<3> g;
+  g.add(std::make_unique<core::Box<3>>(Vec<3>::Zero(), Vec<3>::Zero()));
+  auto p = core::fill_lattice<3>(g, lat, 0.5);
+  Indenter<3> ind;
+  ind.center0 = Vec<3>(0, 0, 0.5);
+  ind.radius = 1.0;
+  ind.stiffness = 2.0;
+  ind.force_density = true;
+  const Vec<3> F = ind.add_forces(p, 0.0);
+  EXPECT_NEAR(p.b[0][2], -0.5, 1e-15);     // 2 (1 − 0.5)², along −z
+  EXPECT_NEAR(F[2], 0.5 * 0.5, 1e-15);     // times V = 0.5
+}
+
 }  // namespace
 }  // namespace pdmpm::bc

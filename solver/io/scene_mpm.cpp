@@ -1,0 +1,59 @@
+// The MPM parts of a scene: constitutive keys of [material] and the [mpm] table.
+#include "solver/io/scene.hpp"
+#include "solver/io/toml_reader.hpp"
+
+namespace pdmpm::io {
+
+void read_mpm_material(const TomlReader& m, Scene& s) {
+  MpmSpec& spec = *s.mpm;
+  if (auto c = m.optional_string("constitutive"))
+    spec.constitutive = mpm::parse_material_model(*c, m.file(), m.path("constitutive"));
+  const bool j2 = spec.constitutive == mpm::MaterialModel::j2;
+  if (j2) {
+    spec.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
+    spec.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
+  } else {
+    for (const char* key : {"yield_stress", "tangent_modulus"})
+      if (m.has(key)) m.fail(key, "only for constitutive = \"j2\"");
+  }
+  if (auto f = m.optional_table("failure")) {
+    if (!j2) m.fail("failure", "the ductile criterion needs constitutive = \"j2\" (it acts on the equivalent plastic strain)");
+    spec.failure.enabled = f->boolean("enabled", true);
+    spec.failure.d0 = f->positive("d0", f->number("d0"));
+    spec.failure.c = f->number("c");
+    if (auto r = f->optional_string("rule")) spec.failure.rule = mpm::parse_failure_rule(*r, f->file(), f->path("rule"));
+    f->finish();
+  }
+}
+
+void read_mpm_options(const TomlReader& t, Scene& s) {
+  MpmSpec& spec = *s.mpm;
+  if (auto v = t.optional_string("shape_function")) spec.shape = mpm::parse_shape_function(*v, t.file(), t.path("shape_function"));
+  if (auto v = t.optional_string("gimp_domain")) spec.gimp_domain = mpm::parse_gimp_domain(*v, t.file(), t.path("gimp_domain"));
+  if (auto v = t.optional_string("update_scheme")) spec.scheme = mpm::parse_update_scheme(*v, t.file(), t.path("update_scheme"));
+  if (auto v = t.optional_number("flip")) spec.flip = t.in_range("flip", *v, 0.0, 1.0, false, false);
+  if (auto v = t.optional_number("cell_size")) spec.cell_size = t.positive("cell_size", *v);
+  if (auto v = t.optional_number("cell_factor")) spec.cell_factor = t.in_range("cell_factor", *v, 1.0, 16.0, false, false);
+  if (t.has("cell_size") && t.has("cell_factor")) t.fail("cell_factor", "give at most one of cell_size and cell_factor");
+  if (auto v = t.optional_integer("padding_cells")) {
+    if (*v < 2 || *v > 100) t.fail("padding_cells", "must be in [2, 100]");
+    spec.padding_cells = static_cast<int>(*v);
+  }
+  if (auto v = t.optional_number("damping_viscous")) spec.damping_viscous = t.in_range("damping_viscous", *v, 0.0, 1e12, false, false);
+  if (auto v = t.optional_number("damping_local")) spec.damping_local = t.in_range("damping_local", *v, 0.0, 1.0, false, true);
+  if (auto n = t.optional_table("nonlocal")) {
+    spec.nonlocal.enabled = n->boolean("enabled", true);
+    spec.nonlocal.length = n->positive("length", n->number("length"));
+    if (auto v = n->optional_number("m")) spec.nonlocal.m = n->in_range("m", *v, 0.0, 4.0, false, false);
+    n->finish();
+  }
+  t.finish();
+}
+
+const std::vector<std::string>& mpm_field_names() {
+  static const std::vector<std::string> names{"displacement", "velocity", "stress", "von_mises", "triaxiality",
+                                              "eq_plastic_strain", "failed"};
+  return names;
+}
+
+}  // namespace pdmpm::io

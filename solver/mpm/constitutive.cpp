@@ -1,0 +1,81 @@
+#include "solver/mpm/constitutive.hpp"
+
+#include <cmath>
+
+#include "solver/mpm/hencky_elastic.hpp"
+#include "solver/mpm/j2_plasticity.hpp"
+#include "solver/mpm/kinematics.hpp"
+#include "solver/mpm/neo_hookean.hpp"
+
+namespace pdmpm::mpm {
+
+template <int D>
+Mat<3> embed(const Mat<D>& A) {
+  Mat<3> out = Mat<3>::Zero();
+  out.template topLeftCorner<D, D>() = A;
+  return out;
+}
+
+template <int D>
+Mat<3> embed_deformation(const Mat<D>& F) {
+  Mat<3> out = Mat<3>::Identity();
+  out.template topLeftCorner<D, D>() = F;
+  return out;
+}
+
+template <int D>
+StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, double hardening_offset) const {
+  StressResult r;
+  if (m_.model == MaterialModel::neo_hookean) {
+    r.kirchhoff = neo_hookean_kirchhoff(m_, embed_deformation<D>(F), r.J, r.energy);
+    return r;
+  }
+
+  // Log-strain laws: work in the unrotated frame, then rotate back with R.
+  const PolarLog<D> pl = polar_log<D>(F);
+  const Mat<3> eps = embed<D>(pl.log_U);
+  Mat<3> T;
+  double out_of_plane = 0.0;  // plane stress ε₃₃ or bar lateral strain
+  if (m_.model == MaterialModel::linear_elastic) {
+    switch (setting_) {
+      case Setting::plane_stress: T = hooke_plane_stress(m_, eps, out_of_plane); break;
+      case Setting::bar1d: T = hooke_bar(m_, eps, out_of_plane); break;
+      default: T = hooke_3d(m_, eps); break;
+    }
+    r.energy = setting_ == Setting::plane_stress
+                   ? 0.5 * (T(0, 0) * eps(0, 0) + T(1, 1) * eps(1, 1) + 2.0 * T(0, 1) * eps(0, 1))
+                   : elastic_energy(T, eps);
+  } else {
+    J2Result j;
+    switch (setting_) {
+      case Setting::plane_stress: j = j2_return_plane_stress(m_, eps, history, hardening_offset); break;
+      case Setting::bar1d: j = j2_return_bar(m_, eps, history, hardening_offset); break;
+      default: j = j2_return_3d(m_, eps, history, hardening_offset); break;
+    }
+    T = j.T;
+    out_of_plane = j.out_of_plane;
+    r.energy = j.energy;
+    r.dissipation = j.dissipation;
+  }
+  // Volume ratio from the log strain: J = exp(tr ε) with the setting's out-of-plane part.
+  double trace = eps.trace();
+  if (setting_ == Setting::plane_stress) trace += out_of_plane;
+  if (setting_ == Setting::bar1d) trace += 2.0 * out_of_plane;
+  r.J = std::exp(trace);
+  r.out_of_plane_strain = out_of_plane;
+  const Mat<3> R = embed_deformation<D>(pl.R);
+  r.kirchhoff = R * T * R.transpose();
+  return r;
+}
+
+template class Constitutive<1>;
+template class Constitutive<2>;
+template class Constitutive<3>;
+template Mat<3> embed<1>(const Mat<1>&);
+template Mat<3> embed<2>(const Mat<2>&);
+template Mat<3> embed<3>(const Mat<3>&);
+template Mat<3> embed_deformation<1>(const Mat<1>&);
+template Mat<3> embed_deformation<2>(const Mat<2>&);
+template Mat<3> embed_deformation<3>(const Mat<3>&);
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,35 @@
+#pragma once
+// The material response of one MPM point: from its deformation gradient F (D×D)
+// and history to the Kirchhoff stress τ (3×3, current frame). Chooses the law by
+// model and the out-of-plane kinematics by setting; every law is objective:
+// τ(QF) = Q τ(F) Qᵀ for any rotation Q.
+#include "solver/core/types.hpp"
+#include "solver/mpm/material_point.hpp"
+#include "solver/mpm/settings.hpp"
+
+namespace pdmpm::mpm {
+
+template <int D>
+class Constitutive {
+ public:
+  Constitutive(const Material& material, Setting setting) : m_(material), setting_(setting) {}
+
+  // hardening_offset: ε̂_p − ε̄_p used by J2 hardening (non-local correction; 0 = local).
+  StressResult update(const Mat<D>& F, PointHistory& history, double hardening_offset = 0.0) const;
+
+  const Material& material() const { return m_; }
+  Setting setting() const { return setting_; }
+
+ private:
+  Material m_;
+  Setting setting_;
+};
+
+// 3×3 embedding of a D×D tensor (zeros elsewhere) and of a deformation gradient
+// (identity elsewhere).
+template <int D>
+Mat<3> embed(const Mat<D>& A);
+template <int D>
+Mat<3> embed_deformation(const Mat<D>& F);
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,59 @@
+#pragma once
+// Boundary conditions on grid nodes: velocity constraints on node regions
+// (fixed, roller, prescribed velocity) and mirror symmetry planes on grid lines.
+//
+// A symmetry plane acts as if every particle had a mirror image across it: after
+// each particle-to-grid transfer the nodes beyond the plane are folded onto their
+// mirror nodes (normal components change sign), the plane's own node gets its
+// mirror contribution (normal momentum and force cancel), and the nodes beyond
+// then copy their mirror's reflected values. GIMP and B-spline supports reach
+// past a body's edge, so this keeps them consistent where a plain velocity
+// constraint on the edge nodes would not.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "solver/mpm/grid.hpp"
+#include "solver/mpm/settings.hpp"
+
+namespace pdmpm::mpm {
+
+template <int D>
+class GridBoundary {
+ public:
+  GridBoundary() = default;
+  GridBoundary(const std::vector<GridBc<D>>& bcs, const Grid<D>& grid);
+
+  // Fold the contributions of nodes beyond symmetry planes into the domain and clear
+  // them there (call after each particle-to-grid transfer; null arrays are skipped).
+  void fold(std::vector<double>* mass, std::vector<Vec<D>>* vec1, std::vector<Vec<D>>* vec2 = nullptr,
+            std::vector<Vec<D>>* vec3 = nullptr) const;
+  // Nodes beyond symmetry planes take their mirror's reflected value.
+  void mirror(std::vector<Vec<D>>& v) const;
+  // Impose the velocity constraints at time t. With `mass` and `dt` given, the force
+  // each boundary exerted (Σ m Δv / dt over its nodes) is written to `reactions`.
+  void constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr, double dt = 0.0,
+                 std::vector<Vec<D>>* reactions = nullptr) const;
+
+  // Share of a node's (folded) mass and force that belongs to the real body: ½ on a
+  // symmetry plane (the mirror image holds the other half), ¼ where two planes meet.
+  // Reactions and work sums use it so mirror images are not counted.
+  double real_share(Index node) const { return share_.empty() ? 1.0 : share_[node]; }
+
+  std::size_t count() const { return bcs_.size(); }
+  const std::vector<Index>& nodes(std::size_t bc) const { return nodes_[bc]; }
+
+ private:
+  struct MirrorPair {
+    Index outside, inside;
+    int axis;
+  };
+  std::vector<GridBc<D>> bcs_;
+  std::vector<std::vector<Index>> nodes_;        // per velocity-type bc: constrained nodes
+  std::vector<std::vector<Vec<D>>> positions_;   // per bc: positions of its nodes
+  std::vector<std::vector<MirrorPair>> pairs_;   // per symmetry plane, applied in order
+  std::vector<std::pair<std::vector<Index>, int>> plane_nodes_;  // per symmetry plane: nodes on it, axis
+  std::vector<double> share_;                    // real_share per node (empty: all 1)
+};
+
+}  // namespace pdmpm::mpm

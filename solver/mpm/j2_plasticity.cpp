@@ -1,0 +1,149 @@
+#include "solver/mpm/j2_plasticity.hpp"
+
+#include <cmath>
+
+#include "solver/core/error.hpp"
+
+namespace pdmpm::mpm {
+
+namespace {
+const double kSqrt2over3 = std::sqrt(2.0 / 3.0);
+const double kSqrt3over2 = std::sqrt(1.5);
+}  // namespace
+
+J2Result j2_return_3d(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = m.shear(), H = m.hardening_modulus();
+  const Mat<3> eps_e_trial = eps - h.plastic_strain;
+  const Mat<3> T_trial = hooke_3d(m, eps_e_trial);
+  const Mat<3> s = T_trial - (T_trial.trace() / 3.0) * Mat<3>::Identity();
+  const double s_norm = s.norm();
+  const double q = kSqrt3over2 * s_norm;  // von Mises equivalent of the trial stress
+  const double kappa = m.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
+  J2Result r;
+  if (q <= kappa) {
+    r.T = T_trial;
+    r.energy = elastic_energy(T_trial, eps_e_trial);
+    return r;
+  }
+  // Linear hardening makes the consistency condition linear in Δε̄_p.
+  const double d_alpha = (q - kappa) / (3.0 * G + H);
+  const Mat<3> n = s / s_norm;                             // unit deviatoric direction
+  const Mat<3> d_eps_p = kSqrt3over2 * d_alpha * n;        // |Δε_p| = sqrt(3/2) Δε̄_p
+  h.plastic_strain += d_eps_p;
+  h.eq_plastic_strain += d_alpha;
+  r.T = T_trial - 2.0 * G * d_eps_p;
+  r.d_eq_plastic = d_alpha;
+  r.dissipation = (r.T.array() * d_eps_p.array()).sum();
+  r.energy = elastic_energy(r.T, eps - h.plastic_strain);
+  return r;
+}
+
+J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = m.shear(), H = m.hardening_modulus(), E = m.E, nu = m.nu;
+  Mat<3> eps_e = eps - h.plastic_strain;
+  double e33_el = 0.0;
+  const Mat<3> T_trial = hooke_plane_stress(m, eps_e, e33_el);
+  // Spectral coordinates of the in-plane stress in the common eigenbasis of the
+  // plane-stress elasticity and the projection P (eigenvalues 1/3, 1, 2).
+  const double a1 = (T_trial(0, 0) + T_trial(1, 1)) / std::sqrt(2.0);
+  const double a2 = (T_trial(1, 1) - T_trial(0, 0)) / std::sqrt(2.0);
+  const double a3 = T_trial(0, 1);
+  const double c1 = E / (3.0 * (1.0 - nu));  // (elastic eigenvalue) × (P eigenvalue), mode 1
+  const double c2 = 2.0 * G;                 // modes 2 and 3
+  const double alpha0 = h.eq_plastic_strain + hardening_offset;
+  // φ²(Δγ) = σᵀPσ after the return, f(Δγ) = ½φ² − ⅓ κ²(α₀ + sqrt(2/3) Δγ φ).
+  auto phi2 = [&](double dg) {
+    const double d1 = 1.0 + c1 * dg, d2 = 1.0 + c2 * dg;
+    return a1 * a1 / (3.0 * d1 * d1) + (a2 * a2 + 2.0 * a3 * a3) / (d2 * d2);
+  };
+  auto dphi2 = [&](double dg) {
+    const double d1 = 1.0 + c1 * dg, d2 = 1.0 + c2 * dg;
+    return -2.0 * c1 * a1 * a1 / (3.0 * d1 * d1 * d1) - 2.0 * c2 * (a2 * a2 + 2.0 * a3 * a3) / (d2 * d2 * d2);
+  };
+  auto f = [&](double dg, double& df) {
+    const double p2 = phi2(dg), p = std::sqrt(p2);
+    const double kappa = m.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
+    const double dp = p > 0.0 ? 0.5 * dphi2(dg) / p : 0.0;
+    const double dkappa = H * kSqrt2over3 * (p + dg * dp);
+    df = 0.5 * dphi2(dg) - (2.0 / 3.0) * kappa * dkappa;
+    return 0.5 * p2 - kappa * kappa / 3.0;
+  };
+  J2Result r;
+  double df = 0.0;
+  const double f0 = f(0.0, df);
+  if (f0 <= 0.0) {
+    r.T = T_trial;
+    r.out_of_plane = e33_el + h.plastic_strain(2, 2);
+    r.energy = elastic_energy(T_trial, eps_e);
+    return r;
+  }
+  // f decreases monotonically in Δγ (Simo & Hughes 1998 §3.4.2): bracket the root,
+  // then Newton steps kept inside the bracket (bisection if a step leaves it).
+  double lo = 0.0, hi = 1.0 / c2;
+  while (f(hi, df) > 0.0) {
+    lo = hi;
+    hi *= 2.0;
+    if (hi > 1e12 / c2) throw RunError("plane-stress return map: no bracket for the consistency parameter");
+  }
+  double dg = 0.5 * (lo + hi);
+  const double scale = m.yield_stress * m.yield_stress;
+  for (int it = 0; it < 200; ++it) {
+    const double fv = f(dg, df);
+    if (fv > 0.0) lo = dg; else hi = dg;
+    if (std::abs(fv) <= 1e-15 * scale || hi - lo <= 1e-16 * hi) break;
+    double next = dg - fv / df;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    dg = next;
+  }
+  const double d1 = 1.0 + c1 * dg, d2 = 1.0 + c2 * dg;
+  const double b1 = a1 / d1, b2 = a2 / d2, b3 = a3 / d2;
+  Mat<3> T = Mat<3>::Zero();
+  T(0, 0) = (b1 - b2) / std::sqrt(2.0);
+  T(1, 1) = (b1 + b2) / std::sqrt(2.0);
+  T(0, 1) = T(1, 0) = b3;
+  // Δε_p = Δγ P σ (tensor components: the engineering shear 2Δγσ₁₂ halves to Δγσ₁₂).
+  Mat<3> d_eps_p = Mat<3>::Zero();
+  d_eps_p(0, 0) = dg * (2.0 * T(0, 0) - T(1, 1)) / 3.0;
+  d_eps_p(1, 1) = dg * (2.0 * T(1, 1) - T(0, 0)) / 3.0;
+  d_eps_p(0, 1) = d_eps_p(1, 0) = dg * T(0, 1);
+  d_eps_p(2, 2) = -(d_eps_p(0, 0) + d_eps_p(1, 1));
+  const double d_alpha = kSqrt2over3 * dg * std::sqrt(phi2(dg));
+  h.plastic_strain += d_eps_p;
+  h.eq_plastic_strain += d_alpha;
+  r.T = T;
+  r.d_eq_plastic = d_alpha;
+  r.dissipation = (T.array() * d_eps_p.array()).sum();
+  eps_e = eps - h.plastic_strain;
+  r.energy = 0.5 * (T(0, 0) * eps_e(0, 0) + T(1, 1) * eps_e(1, 1) + 2.0 * T(0, 1) * eps_e(0, 1));
+  r.out_of_plane = -nu / E * (T(0, 0) + T(1, 1)) + h.plastic_strain(2, 2);
+  return r;
+}
+
+J2Result j2_return_bar(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double E = m.E, H = m.hardening_modulus();
+  const double ep = h.plastic_strain(0, 0);
+  const double T_trial = E * (eps(0, 0) - ep);
+  const double kappa = m.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
+  J2Result r;
+  double T = T_trial;
+  if (std::abs(T_trial) > kappa) {
+    const double d_alpha = (std::abs(T_trial) - kappa) / (E + H);
+    const double sign = T_trial > 0.0 ? 1.0 : -1.0;
+    T = T_trial - E * d_alpha * sign;
+    // Isochoric flow: lateral plastic strains are −½ of the axial one.
+    Mat<3> d_eps_p = Mat<3>::Zero();
+    d_eps_p(0, 0) = sign * d_alpha;
+    d_eps_p(1, 1) = d_eps_p(2, 2) = -0.5 * sign * d_alpha;
+    h.plastic_strain += d_eps_p;
+    h.eq_plastic_strain += d_alpha;
+    r.d_eq_plastic = d_alpha;
+    r.dissipation = T * sign * d_alpha;
+  }
+  r.T(0, 0) = T;
+  const double eps_e = eps(0, 0) - h.plastic_strain(0, 0);
+  r.energy = 0.5 * T * eps_e;
+  r.out_of_plane = -m.nu * eps_e + h.plastic_strain(1, 1);
+  return r;
+}
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,33 @@
+#pragma once
+// Von Mises (J2) plasticity with linear isotropic hardening, integrated by
+// backward-Euler return mapping on an additive split of the logarithmic strain,
+// ε = ε_e + ε_p (Lagrangian log-strain plasticity). Yield: σ_eq ≤ σ_y + H ε̂_p with
+// H = E E_t / (E − E_t), so uniaxial stress follows σ_y + E_t (ε − σ_y/E).
+// ε̂_p = ε̄_p + hardening_offset (the offset carries the non-local correction).
+#include "solver/core/types.hpp"
+#include "solver/mpm/hencky_elastic.hpp"
+#include "solver/mpm/material_point.hpp"
+#include "solver/mpm/settings.hpp"
+
+namespace pdmpm::mpm {
+
+struct J2Result {
+  Mat<3> T = Mat<3>::Zero();   // rotated Kirchhoff stress
+  double out_of_plane = 0.0;   // plane stress ε₃₃ / bar lateral strain (total, log)
+  double energy = 0.0;         // ½ T : ε_e
+  double dissipation = 0.0;    // T : Δε_p
+  double d_eq_plastic = 0.0;   // Δε̄_p of this update
+};
+
+// solid3d, plane_strain, uniaxial_strain: radial return (Simo & Hughes 1998, box 3.1).
+J2Result j2_return_3d(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+
+// Plane stress (σ₃₃ = σ₁₃ = σ₂₃ = 0): the plane-stress projected return map of
+// Simo & Taylor (1986) / Simo & Hughes (1998) §3.4, solved for the consistency
+// parameter by safeguarded Newton in the spectral basis of the projection P.
+J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+
+// Bar (uniaxial stress): 1D return map.
+J2Result j2_return_bar(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+
+}  // namespace pdmpm::mpm

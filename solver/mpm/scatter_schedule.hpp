@@ -1,0 +1,83 @@
+#pragma once
+// Deterministic, race-free particle-to-grid scatter.
+//
+// Particles are binned into blocks of 4^D cells (stable counting sort: within a
+// block, ascending particle index). Blocks get one of 2^D colours by the parity
+// of their block coordinates. A particle in cell c writes only to nodes c−1 … c+2
+// per axis, so two blocks of the same colour (≥ 4 cells apart on some axis) never
+// write to the same node. Colours run one after another; the blocks of a colour
+// run in parallel, each by one thread in particle order. Every node therefore sums
+// its contributions in the same order whatever the number of threads, and the
+// result is bit-identical for any OpenMP team size, without atomics.
+#include <array>
+#include <vector>
+
+#include "solver/core/types.hpp"
+#include "solver/mpm/grid.hpp"
+#include "solver/mpm/parallel.hpp"
+
+namespace pdmpm::mpm {
+
+template <int D>
+class ScatterSchedule {
+ public:
+  static constexpr int kBlockCells = 4;
+  static constexpr int kColours = 1 << D;
+
+  // cell[k] = cell coordinates of particles[k] (each in [0, cells) per axis).
+  void build(const Grid<D>& grid, const std::vector<Index>& particles, const std::vector<IVec<D>>& cell) {
+    Index nb = 1;
+    for (int a = 0; a < D; ++a) {
+      nblocks_[a] = (grid.cells()[a] + kBlockCells - 1) / kBlockCells;
+      nb *= nblocks_[a];
+    }
+    std::vector<Index> block(particles.size());
+    start_.assign(static_cast<std::size_t>(nb) + 1, 0);
+    for (std::size_t k = 0; k < particles.size(); ++k) {
+      Index b = 0, s = 1;
+      for (int a = 0; a < D; ++a) {
+        b += (cell[k][a] / kBlockCells) * s;
+        s *= nblocks_[a];
+      }
+      block[k] = b;
+      ++start_[b + 1];
+    }
+    for (Index b = 0; b < nb; ++b) start_[b + 1] += start_[b];
+    order_.resize(particles.size());
+    std::vector<Index> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t k = 0; k < particles.size(); ++k) order_[fill[block[k]]++] = particles[k];
+    for (auto& c : colour_blocks_) c.clear();
+    for (Index b = 0; b < nb; ++b) {
+      if (start_[b + 1] == start_[b]) continue;
+      int colour = 0;
+      Index rest = b;
+      for (int a = 0; a < D; ++a) {
+        colour |= ((rest % nblocks_[a]) & 1) << a;
+        rest /= nblocks_[a];
+      }
+      colour_blocks_[colour].push_back(b);
+    }
+  }
+
+  // fn(particle index) for every particle, scheduled as described above.
+  template <class Fn>
+  void for_each(Fn&& fn) const {
+    const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin;
+    for (int c = 0; c < kColours; ++c) {
+      const std::vector<Index>& blocks = colour_blocks_[c];
+      const Index nblk = static_cast<Index>(blocks.size());
+#pragma omp parallel for schedule(dynamic, 1) if (parallel)
+      for (Index bi = 0; bi < nblk; ++bi) {
+        const Index b = blocks[bi];
+        for (Index k = start_[b]; k < start_[b + 1]; ++k) fn(order_[k]);
+      }
+    }
+  }
+
+ private:
+  IVec<D> nblocks_ = IVec<D>::Ones();
+  std::vector<Index> start_, order_;
+  std::array<std::vector<Index>, kColours> colour_blocks_;
+};
+
+}  // namespace pdmpm::mpm

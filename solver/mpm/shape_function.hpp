@@ -1,0 +1,118 @@
+#pragma once
+// Grid interpolation weights S_Ip and gradients ∇S_Ip, as tensor products of 1D
+// weights. A particle touches at most 3 nodes per axis for every kind here
+// (linear 2; uGIMP 3 when the half-width lp ≤ h/2; quadratic B-spline 3).
+#include <array>
+#include <cmath>
+
+#include "solver/core/types.hpp"
+#include "solver/mpm/settings.hpp"
+
+namespace pdmpm::mpm {
+
+inline constexpr int kMaxNodesPerAxis = 3;
+
+inline int nodes_per_axis(ShapeFunction s) { return s == ShapeFunction::linear ? 2 : 3; }
+
+// Weights of nodes first, first+1, … for a particle at grid coordinate g = (x − origin)/h.
+struct Weights1D {
+  int first = 0;
+  std::array<double, kMaxNodesPerAxis> w{}, dw{};  // dw = ∂S/∂x (1/m)
+};
+
+// uGIMP weight of a node at signed distance r = x_p − x_I (Bardenhagen & Kober 2004,
+// piecewise-constant particle characteristic of half-width lp, linear grid functions).
+inline double gimp_weight(double r, double h, double lp) {
+  const double a = std::abs(r);
+  if (a < lp) return 1.0 - (r * r + lp * lp) / (2.0 * h * lp);
+  if (a < h - lp) return 1.0 - a / h;
+  if (a < h + lp) {
+    const double d = h + lp - a;
+    return d * d / (4.0 * h * lp);
+  }
+  return 0.0;
+}
+inline double gimp_gradient(double r, double h, double lp) {
+  const double a = std::abs(r), sign = r < 0.0 ? -1.0 : 1.0;
+  if (a < lp) return -r / (h * lp);
+  if (a < h - lp) return -sign / h;
+  if (a < h + lp) return -sign * (h + lp - a) / (2.0 * h * lp);
+  return 0.0;
+}
+
+// x_rel = x − origin along one axis; h = cell size; lp = GIMP half-width.
+inline Weights1D weights_1d(ShapeFunction s, double x_rel, double h, double lp) {
+  Weights1D r;
+  const double g = x_rel / h;
+  switch (s) {
+    case ShapeFunction::linear: {
+      r.first = static_cast<int>(std::floor(g));
+      const double f = g - r.first;
+      r.w = {1.0 - f, f, 0.0};
+      r.dw = {-1.0 / h, 1.0 / h, 0.0};
+      break;
+    }
+    case ShapeFunction::gimp: {
+      // First node strictly inside the support (x_I > x − h − lp).
+      r.first = static_cast<int>(std::floor(g - 1.0 - lp / h)) + 1;
+      for (int k = 0; k < 3; ++k) {
+        const double dist = (g - (r.first + k)) * h;
+        r.w[k] = gimp_weight(dist, h, lp);
+        r.dw[k] = gimp_gradient(dist, h, lp);  // ∂S/∂x_p at r = x_p − x_I
+      }
+      break;
+    }
+    case ShapeFunction::bspline2: {
+      r.first = static_cast<int>(std::floor(g - 0.5));
+      const double f = g - r.first;  // ∈ [0.5, 1.5)
+      r.w = {0.5 * (1.5 - f) * (1.5 - f), 0.75 - (f - 1.0) * (f - 1.0), 0.5 * (f - 0.5) * (f - 0.5)};
+      r.dw = {-(1.5 - f) / h, -2.0 * (f - 1.0) / h, (f - 0.5) / h};
+      break;
+    }
+  }
+  return r;
+}
+
+template <int D>
+struct Stencil {
+  IVec<D> first;
+  std::array<std::array<double, kMaxNodesPerAxis>, D> w{}, dw{};
+};
+
+template <int D>
+inline Stencil<D> make_stencil(ShapeFunction s, const Vec<D>& x_rel, double h, const Vec<D>& half_width) {
+  Stencil<D> st;
+  for (int a = 0; a < D; ++a) {
+    const Weights1D w = weights_1d(s, x_rel[a], h, half_width[a]);
+    st.first[a] = w.first;
+    st.w[a] = w.w;
+    st.dw[a] = w.dw;
+  }
+  return st;
+}
+
+// Calls f(offset k (per-axis), weight, gradient) for each of the K^D stencil nodes.
+template <int D, class F>
+inline void for_each_node(const Stencil<D>& st, int K, F&& f) {
+  std::array<int, 3> k{0, 0, 0};
+  while (true) {
+    double w = 1.0;
+    Vec<D> grad;
+    for (int a = 0; a < D; ++a) w *= st.w[a][k[a]];
+    for (int a = 0; a < D; ++a) {
+      double g = st.dw[a][k[a]];
+      for (int b = 0; b < D; ++b)
+        if (b != a) g *= st.w[b][k[b]];
+      grad[a] = g;
+    }
+    f(k, w, grad);
+    int a = 0;
+    for (; a < D; ++a) {
+      if (++k[a] < K) break;
+      k[a] = 0;
+    }
+    if (a == D) return;
+  }
+}
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,530 @@
+#include "solver/mpm/simulation.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "solver/core/error.hpp"
+#include "solver/mpm/deterministic_sum.hpp"
+#include "solver/mpm/kinematics.hpp"
+#include "solver/mpm/nonlocal.hpp"
+#include "solver/mpm/parallel.hpp"
+#include "solver/mpm/stress_measures.hpp"
+
+namespace pdmpm::mpm {
+
+namespace {
+
+bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == core::ParticleKind::transition; }
+
+double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
+
+}  // namespace
+
+template <int D>
+Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, const std::string& file,
+                          const std::string& prefix)
+    : settings_(std::move(settings)), particles_(particles), constitutive_(settings_.material, settings_.setting) {
+  const double dx = particles_.lattice.spacing;
+  validate(settings_, dx, file, prefix);
+  auto key = [&](const std::string& k) { return prefix.empty() ? k : prefix + "." + k; };
+  if (particles_.n_real == 0) throw InputError(file, key("(particles)"), "the MPM body has no particles");
+  K_ = nodes_per_axis(settings_.shape);
+
+  // Grid: node lines through settings.origin, cell h, covering the domain.
+  const double h = settings_.cell_size > 0.0 ? settings_.cell_size : settings_.cell_factor * dx;
+  Vec<D> lo, hi;
+  if (settings_.domain_min) {
+    lo = *settings_.domain_min;
+    hi = *settings_.domain_max;
+  } else {
+    lo = Vec<D>::Constant(std::numeric_limits<double>::infinity());
+    hi = -lo;
+    for (Index p = 0; p < particles_.n_real; ++p) {
+      lo = lo.cwiseMin(particles_.position(p));
+      hi = hi.cwiseMax(particles_.position(p));
+    }
+    lo -= Vec<D>::Constant(0.5 * dx + settings_.padding_cells * h);
+    hi += Vec<D>::Constant(0.5 * dx + settings_.padding_cells * h);
+  }
+  IVec<D> klo, n;
+  for (int a = 0; a < D; ++a) {
+    klo[a] = static_cast<std::int32_t>(std::floor((lo[a] - settings_.origin[a]) / h + 1e-9));
+    const auto khi = static_cast<std::int32_t>(std::ceil((hi[a] - settings_.origin[a]) / h - 1e-9));
+    n[a] = khi - klo[a] + 1;
+    if (n[a] < 2) throw InputError(file, key("grid.max"), "the grid must span at least one cell on every axis");
+  }
+  grid_ = Grid<D>(settings_.origin + h * klo.template cast<double>(), h, n);
+  for (std::size_t b = 0; b < settings_.boundaries.size(); ++b) {
+    const GridBc<D>& bc = settings_.boundaries[b];
+    if (bc.kind != BcKind::symmetry) continue;
+    const double k0 = (bc.position - grid_.node0[bc.axis]) / h;
+    if (k0 < 0.0 || k0 > n[bc.axis] - 1)
+      throw InputError(file, key(fmt::format("boundary[{}].position", b)),
+                       fmt::format("symmetry plane at {} lies outside the grid [{}, {}]", bc.position,
+                                   grid_.node0[bc.axis], grid_.node0[bc.axis] + (n[bc.axis] - 1) * h));
+  }
+  boundary_ = GridBoundary<D>(settings_.boundaries, grid_);
+  reactions_.assign(settings_.boundaries.size(), Vec<D>::Zero());
+
+  state_.resize(particles_.size());
+  for (Index p = 0; p < particles_.n_real; ++p) initialise_particle(p);
+
+  // Tractions act on the particles whose reference position lies in the region.
+  const double tol = 1e-9 * dx;
+  for (std::size_t t = 0; t < settings_.tractions.size(); ++t) {
+    const Traction<D>& tr = settings_.tractions[t];
+    std::vector<Index> sel;
+    for (Index p = 0; p < particles_.n_real; ++p) {
+      bool in = true;
+      for (int a = 0; a < D; ++a) in = in && particles_.x0[p][a] >= tr.min[a] - tol && particles_.x0[p][a] <= tr.max[a] + tol;
+      if (in) sel.push_back(p);
+    }
+    if (sel.empty()) throw InputError(file, key(fmt::format("traction[{}].min", t)), "the traction region contains no particle");
+    traction_particles_.push_back(std::move(sel));
+  }
+
+  // Every real particle's stencil must fit in the grid now (whatever its kind).
+  active_.clear();
+  for (Index p = 0; p < particles_.n_real; ++p) active_.push_back(p);
+  try {
+    compute_stencils();
+  } catch (const RunError& e) {
+    throw InputError(file, key("grid.min"), std::string("the grid does not cover the body: ") + e.what());
+  }
+  refresh_active();
+  if (settings_.dt > 0.0) {
+    const double dts = stable_dt();
+    if (settings_.dt > dts)
+      throw InputError(file, key("dt"), fmt::format("{} s exceeds the stable step h / max(c + |v|) = {} s", settings_.dt, dts));
+  }
+}
+
+template <int D>
+void Simulation<D>::initialise_particle(Index p) {
+  const double dx = particles_.lattice.spacing;
+  state_.mass[p] = settings_.material.rho * particles_.volume[p];
+  state_.half_width[p] = Vec<D>::Constant(0.5 * dx);
+  state_.F[p].setIdentity();
+  state_.kirchhoff[p].setZero();
+  state_.stress[p].setZero();
+  state_.J[p] = 1.0;
+  state_.out_of_plane_strain[p] = 0.0;
+  state_.history[p] = PointHistory{};
+  state_.eq_plastic_hardening[p] = 0.0;
+  state_.energy[p] = 0.0;
+  state_.dissipation[p] = 0.0;
+  state_.damage[p] = 0.0;
+  state_.failed[p] = 0;
+  state_.initialised[p] = 1;
+}
+
+template <int D>
+void Simulation<D>::sync_particles() {
+  const Index old = state_.size();
+  state_.resize(particles_.size());
+  for (Index p = old; p < particles_.n_real; ++p) initialise_particle(p);
+}
+
+template <int D>
+void Simulation<D>::refresh_active() {
+  active_.clear();
+  for (Index p = 0; p < particles_.n_real; ++p)
+    if (is_mpm(particles_.kind[p])) active_.push_back(p);
+}
+
+template <int D>
+void Simulation<D>::compute_stencils() {
+  stencil_.resize(particles_.size());
+  const Index na = static_cast<Index>(active_.size());
+  std::vector<IVec<D>> cell(active_.size());
+  Index bad = std::numeric_limits<Index>::max();
+  const IVec<D> cells = grid_.cells();
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = active_[k];
+    const Vec<D> xr = particles_.position(p) - grid_.node0;
+    if (!xr.allFinite()) {
+      bad = std::min(bad, p);
+      continue;
+    }
+    const Stencil<D> st = make_stencil<D>(settings_.shape, xr, grid_.h, state_.half_width[p]);
+    bool ok = true;
+    for (int a = 0; a < D; ++a) {
+      ok = ok && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
+      cell[k][a] = std::clamp(static_cast<std::int32_t>(std::floor(xr[a] / grid_.h)), 0, cells[a] - 1);
+    }
+    if (!ok) bad = std::min(bad, p);
+    stencil_[p] = st;
+  }
+  if (bad != std::numeric_limits<Index>::max()) {
+    std::string where;
+    const Vec<D> x = particles_.position(bad);
+    for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", x[a]);
+    throw RunError(fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
+  }
+  schedule_.build(grid_, active_, cell);
+}
+
+template <int D>
+Vec<D> Simulation<D>::external_force(Index p, double t) const {
+  const double m = state_.mass[p];
+  Vec<D> f = m * settings_.gravity + particles_.volume[p] * particles_.b[p];
+  if (settings_.body_acceleration) f += m * settings_.body_acceleration(particles_.x0[p], t);
+  return f;
+}
+
+template <int D>
+void Simulation<D>::scatter_mass_momentum(bool with_mass) {
+  const Index N = grid_.size();
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
+  for (Index i = 0; i < N; ++i) {
+    if (with_mass) grid_.mass[i] = 0.0;
+    grid_.momentum[i].setZero();
+  }
+  const IVec<D> stride = grid_.stride;
+  schedule_.for_each([&](Index p) {
+    const Stencil<D>& st = stencil_[p];
+    const Index base = st.first.dot(stride);
+    const double m = state_.mass[p];
+    const Vec<D> mv = m * particles_.v[p];
+    for_each_node<D>(st, K_, [&](const std::array<int, 3>& k, double w, const Vec<D>&) {
+      Index node = base;
+      for (int a = 0; a < D; ++a) node += k[a] * stride[a];
+      if (with_mass) grid_.mass[node] += w * m;
+      grid_.momentum[node] += w * mv;
+    });
+  });
+  boundary_.fold(with_mass ? &grid_.mass : nullptr, &grid_.momentum);
+}
+
+template <int D>
+void Simulation<D>::scatter_forces() {
+  const Index N = grid_.size();
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
+  for (Index i = 0; i < N; ++i) {
+    grid_.force_internal[i].setZero();
+    grid_.force_external[i].setZero();
+  }
+  const IVec<D> stride = grid_.stride;
+  schedule_.for_each([&](Index p) {
+    const Stencil<D>& st = stencil_[p];
+    const Index base = st.first.dot(stride);
+    const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
+    const Vec<D> fe = ext_force_[p];
+    for_each_node<D>(st, K_, [&](const std::array<int, 3>& k, double w, const Vec<D>& g) {
+      Index node = base;
+      for (int a = 0; a < D; ++a) node += k[a] * stride[a];
+      grid_.force_internal[node] -= Vtau * g;
+      grid_.force_external[node] += w * fe;
+    });
+  });
+  boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
+}
+
+template <int D>
+void Simulation<D>::grid_velocity_from_momentum(std::vector<Vec<D>>& v) const {
+  const Index N = grid_.size();
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
+  for (Index i = 0; i < N; ++i) v[i] = grid_.mass[i] > 0.0 ? Vec<D>(grid_.momentum[i] / grid_.mass[i]) : Vec<D>::Zero();
+}
+
+template <int D>
+void Simulation<D>::update_nonlocal() {
+  const Index n = particles_.size();
+  if (!settings_.nonlocal.enabled) {
+    for (Index p : active_) state_.eq_plastic_hardening[p] = state_.history[p].eq_plastic_strain;
+    return;
+  }
+  std::vector<Vec<D>> x(n, Vec<D>::Zero());
+  std::vector<double> a(n, 0.0), avg;
+  std::vector<std::uint8_t> use(n, 0);
+  for (Index p : active_) {
+    if (state_.failed[p]) continue;
+    x[p] = particles_.position(p);
+    a[p] = state_.history[p].eq_plastic_strain;
+    use[p] = 1;
+  }
+  nonlocal_average<D>(x, particles_.volume, a, use, settings_.nonlocal.length, avg);
+  const double m = settings_.nonlocal.m;
+  for (Index p : active_) state_.eq_plastic_hardening[p] = (1.0 - m) * a[p] + m * avg[p];
+}
+
+template <int D>
+void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
+  const Index na = static_cast<Index>(active_.size());
+  const IVec<D> stride = grid_.stride;
+  const Failure& fail = settings_.failure;
+  const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
+  const double lp0 = 0.5 * particles_.lattice.spacing;
+  Index bad = std::numeric_limits<Index>::max();
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = active_[k];
+    const Stencil<D>& st = stencil_[p];
+    const Index base = st.first.dot(stride);
+    Mat<D> L = Mat<D>::Zero();
+    for_each_node<D>(st, K_, [&](const std::array<int, 3>& kk, double, const Vec<D>& g) {
+      Index node = base;
+      for (int a = 0; a < D; ++a) node += kk[a] * stride[a];
+      L += vg[node] * g.transpose();
+    });
+    state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
+    if (stretch_domains) {
+      for (int a = 0; a < D; ++a)
+        state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
+    }
+    if (state_.failed[p]) continue;  // a failed particle carries no stress
+    PointHistory& hist = state_.history[p];
+    const double alpha_before = hist.eq_plastic_strain;
+    const double offset = state_.eq_plastic_hardening[p] - alpha_before;
+    StressResult r;
+    try {
+      r = constitutive_.update(state_.F[p], hist, offset);
+    } catch (const RunError&) {
+      bad = std::min(bad, p);
+      continue;
+    }
+    state_.kirchhoff[p] = r.kirchhoff;
+    state_.J[p] = r.J;
+    state_.stress[p] = r.kirchhoff / r.J;
+    state_.out_of_plane_strain[p] = r.out_of_plane_strain;
+    state_.energy[p] = r.energy;
+    state_.dissipation[p] += r.dissipation;
+    if (fail.enabled) {
+      const double eta = mpm::triaxiality(state_.stress[p]);
+      const double eps_f = fracture_strain(fail.d0, fail.c, eta);
+      bool broke = false;
+      if (fail.rule == FailureRule::strain) {
+        broke = hist.eq_plastic_strain + offset >= eps_f;
+      } else {
+        state_.damage[p] += (hist.eq_plastic_strain - alpha_before) / eps_f;
+        broke = state_.damage[p] >= 1.0;
+      }
+      if (broke) {
+        state_.failed[p] = 1;
+        failed_this_step_[p] = 1;
+        state_.kirchhoff[p].setZero();
+        state_.stress[p].setZero();
+        state_.energy[p] = 0.0;
+      }
+    }
+  }
+  if (bad != std::numeric_limits<Index>::max())
+    throw RunError(fmt::format("MPM step {}: particle {} inverted (det F ≤ 0); the step {} s may be too large "
+                               "(stable step estimate {} s)",
+                               steps_, bad, dt, stable_dt()));
+}
+
+template <int D>
+double Simulation<D>::stable_dt() const {
+  const Material& m = settings_.material;
+  const double M = m.wave_modulus(settings_.setting);
+  double vmax = 0.0;
+  const Index na = static_cast<Index>(active_.size());
+#pragma omp parallel for schedule(static) reduction(max : vmax) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = active_[k];
+    double modulus = M;
+    if (m.model == MaterialModel::neo_hookean) {
+      // The neo-Hookean tangent stiffens with stretch: λ + 2μ λ_max(B), λ_max ≤ ‖B‖_∞.
+      const Mat<3> F3 = embed_deformation<D>(state_.F[p]);
+      const Mat<3> B = F3 * F3.transpose();
+      modulus = m.lame() + 2.0 * m.shear() * std::max(1.0, B.cwiseAbs().rowwise().sum().maxCoeff());
+    }
+    const double c = std::sqrt(modulus / m.rho) + particles_.v[p].norm();
+    vmax = std::max(vmax, c);
+  }
+  return vmax > 0.0 ? grid_.h / vmax : std::numeric_limits<double>::infinity();
+}
+
+template <int D>
+double Simulation<D>::step() {
+  refresh_active();
+  const double dt = settings_.dt > 0.0 ? settings_.dt : settings_.cfl * stable_dt();
+  step(dt);
+  return dt;
+}
+
+template <int D>
+void Simulation<D>::step(double dt) {
+  if (!(dt > 0.0) || !std::isfinite(dt)) throw RunError(fmt::format("MPM step {}: invalid time step {}", steps_, dt));
+  refresh_active();
+  newly_failed_.clear();
+  if (active_.empty()) {
+    time_ += dt;
+    ++steps_;
+    return;
+  }
+  const double t = time_;
+  sync_particles();
+  failed_this_step_.assign(particles_.size(), 0);
+  compute_stencils();
+
+  // External forces of this step (time tⁿ).
+  ext_force_.assign(particles_.size(), Vec<D>::Zero());
+  for (Index p : active_) ext_force_[p] = external_force(p, t);
+  for (std::size_t i = 0; i < settings_.tractions.size(); ++i) {
+    const Traction<D>& tr = settings_.tractions[i];
+    const double r = ramp(t, tr.ramp_time);
+    for (Index p : traction_particles_[i])
+      if (is_mpm(particles_.kind[p])) {
+        const Vec<D> value = tr.traction_field ? tr.traction_field(particles_.x0[p], t) : tr.traction;
+        ext_force_[p] += r * value * particles_.volume[p] / particles_.lattice.spacing;
+      }
+  }
+  update_nonlocal();
+
+  // P2G and vⁿ.
+  scatter_mass_momentum(true);
+  grid_velocity_from_momentum(grid_.velocity);
+  boundary_.constrain(grid_.velocity, t);
+  boundary_.mirror(grid_.velocity);
+  if (settings_.scheme == UpdateScheme::usf) update_stress(grid_.velocity, dt);
+  scatter_forces();
+
+  // Grid momentum update with damping, then boundary conditions at tⁿ⁺¹.
+  const Index N = grid_.size();
+  std::vector<Vec<D>> damping(static_cast<std::size_t>(N), Vec<D>::Zero());
+  const double cv = settings_.damping_viscous, cl = settings_.damping_local;
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
+  for (Index i = 0; i < N; ++i) {
+    const double m = grid_.mass[i];
+    if (!(m > 0.0)) {
+      grid_.velocity_new[i].setZero();
+      continue;
+    }
+    const Vec<D> v = grid_.velocity[i];
+    const Vec<D> f = grid_.force_internal[i] + grid_.force_external[i];
+    Vec<D> fd = -cv * m * v;
+    if (cl > 0.0)
+      for (int a = 0; a < D; ++a) fd[a] -= cl * std::abs(f[a]) * (v[a] > 0.0 ? 1.0 : v[a] < 0.0 ? -1.0 : 0.0);
+    damping[i] = fd;
+    grid_.velocity_new[i] = v + dt * (f + fd) / m;
+  }
+  std::vector<Vec<D>> v_free = grid_.velocity_new;
+  boundary_.constrain(grid_.velocity_new, t + dt, &grid_.mass, dt, &reactions_);
+  boundary_.mirror(grid_.velocity_new);
+
+  // Work of external, boundary and damping forces over the step (midpoint velocity).
+  {
+    const Vec<3> w = deterministic_sum<Vec<3>>(N, Vec<3>::Zero(), [&](Index i) {
+      const Vec<D> vm = 0.5 * boundary_.real_share(i) * (grid_.velocity[i] + grid_.velocity_new[i]);
+      Vec<3> r;
+      r[0] = grid_.force_external[i].dot(vm);
+      r[1] = grid_.mass[i] > 0.0 ? (grid_.mass[i] / dt) * (grid_.velocity_new[i] - v_free[i]).dot(vm) : 0.0;
+      r[2] = damping[i].dot(vm);
+      return r;
+    });
+    external_work_ += dt * w[0];
+    boundary_work_ += dt * w[1];
+    damping_work_ += dt * w[2];
+  }
+
+  // G2P: particle velocity (FLIP/PIC blend) and position.
+  const Index na = static_cast<Index>(active_.size());
+  const IVec<D> stride = grid_.stride;
+  const double flip = settings_.flip;
+  bool finite = true;
+#pragma omp parallel for schedule(static) reduction(&& : finite) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = active_[k];
+    const Stencil<D>& st = stencil_[p];
+    const Index base = st.first.dot(stride);
+    Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
+    for_each_node<D>(st, K_, [&](const std::array<int, 3>& kk, double w, const Vec<D>&) {
+      Index node = base;
+      for (int a = 0; a < D; ++a) node += kk[a] * stride[a];
+      v_pic += w * grid_.velocity_new[node];
+      dv += w * (grid_.velocity_new[node] - grid_.velocity[node]);
+    });
+    particles_.v[p] = flip * (particles_.v[p] + dv) + (1.0 - flip) * v_pic;
+    particles_.u[p] += dt * v_pic;
+    finite = finite && particles_.v[p].allFinite() && particles_.u[p].allFinite();
+  }
+  if (!finite) {
+    const Energies e = energies();
+    throw RunError(fmt::format("MPM step {} (t = {} s): non-finite particle velocity; kinetic energy {} J, strain "
+                               "energy {} J; step {} s vs stable estimate {} s",
+                               steps_, t, e.kinetic, e.strain, dt, stable_dt()));
+  }
+
+  if (settings_.scheme == UpdateScheme::usl) {
+    update_stress(grid_.velocity_new, dt);
+  } else if (settings_.scheme == UpdateScheme::musl) {
+    scatter_mass_momentum(false);
+    grid_velocity_from_momentum(grid_.velocity_new);
+    boundary_.constrain(grid_.velocity_new, t + dt);
+    boundary_.mirror(grid_.velocity_new);
+    update_stress(grid_.velocity_new, dt);
+  }
+
+  for (Index p : active_)
+    if (failed_this_step_[p]) newly_failed_.push_back(p);
+  time_ += dt;
+  ++steps_;
+}
+
+template <int D>
+void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
+  state_.F[p] = F;
+  PointHistory h = state_.history[p];
+  const StressResult r = constitutive_.update(F, h, state_.eq_plastic_hardening[p] - h.eq_plastic_strain);
+  state_.history[p] = h;
+  state_.kirchhoff[p] = r.kirchhoff;
+  state_.J[p] = r.J;
+  state_.stress[p] = r.kirchhoff / r.J;
+  state_.energy[p] = r.energy;
+  state_.out_of_plane_strain[p] = r.out_of_plane_strain;
+}
+
+template <int D>
+Energies Simulation<D>::energies() const {
+  const Index na = static_cast<Index>(active_.size());
+  const Vec<3> s = deterministic_sum<Vec<3>>(na, Vec<3>::Zero(), [&](Index k) {
+    const Index p = active_[k];
+    return Vec<3>(0.5 * state_.mass[p] * particles_.v[p].squaredNorm(), particles_.volume[p] * state_.energy[p],
+                  particles_.volume[p] * state_.dissipation[p]);
+  });
+  Energies e;
+  e.kinetic = s[0];
+  e.strain = s[1];
+  e.dissipated = s[2];
+  e.external_work = external_work_;
+  e.boundary_work = boundary_work_;
+  e.damping_work = damping_work_;
+  return e;
+}
+
+template <int D>
+Vec<D> Simulation<D>::momentum() const {
+  const Index na = static_cast<Index>(active_.size());
+  return deterministic_sum<Vec<D>>(na, Vec<D>::Zero(), [&](Index k) {
+    const Index p = active_[k];
+    return Vec<D>(state_.mass[p] * particles_.v[p]);
+  });
+}
+
+template <int D>
+double Simulation<D>::total_mass() const {
+  const Index na = static_cast<Index>(active_.size());
+  return deterministic_sum<double>(na, 0.0, [&](Index k) { return state_.mass[active_[k]]; });
+}
+
+template <int D>
+double Simulation<D>::von_mises(Index p) const {
+  return mpm::von_mises(state_.stress[p]);
+}
+
+template <int D>
+double Simulation<D>::triaxiality(Index p) const {
+  return mpm::triaxiality(state_.stress[p]);
+}
+
+template class Simulation<1>;
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,127 @@
+#pragma once
+// Explicit material point method on a fixed background grid (Sulsky, Chen &
+// Schreyer 1994; Sulsky, Zhou & Schreyer 1995), with USF / USL / MUSL orderings,
+// linear / uGIMP / quadratic B-spline interpolation, and the constitutive models
+// of constitutive.hpp.
+//
+// The simulation works on a core::Particles store it does not own: it integrates
+// the particles whose kind is mpm or transition (real particles only), reads their
+// external force density `b` (N/m³ of reference volume: the hybrid puts PD forces
+// there) and writes their displacement u and velocity v. Everything else MPM needs
+// lives in ParticleState, indexed like the store.
+//
+// One step (dt), with S_Ip and ∇S_Ip evaluated at the particle positions xⁿ:
+//   P2G   m_I = Σ S m_p,  p_I = Σ S m_p v_p,  f_I = −Σ V₀ τ_p ∇S + Σ S f_ext,p
+//   USF   vⁿ_I = p/m → BC → stress update from Lₚ = Σ vⁿ_I ⊗ ∇S → forces with the new stress
+//   grid  vⁿ⁺¹_I = vⁿ_I + dt f_I/m_I → BC
+//   G2P   v_p ← flip·(v_p + dt Σ S aᵢ) + (1 − flip)·Σ S vⁿ⁺¹_I,  x_p ← x_p + dt Σ S vⁿ⁺¹_I
+//   USL   stress update from Σ vⁿ⁺¹_I ⊗ ∇S
+//   MUSL  p_I = Σ S m_p v_p (new) → v_I = p/m → BC → stress update from Σ v_I ⊗ ∇S
+// F is updated by the Cayley increment (kinematics.hpp), so a rigid rotation of
+// the grid velocity field rotates each particle exactly.
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "solver/core/particles.hpp"
+#include "solver/mpm/constitutive.hpp"
+#include "solver/mpm/grid.hpp"
+#include "solver/mpm/grid_boundary.hpp"
+#include "solver/mpm/particle_state.hpp"
+#include "solver/mpm/scatter_schedule.hpp"
+#include "solver/mpm/settings.hpp"
+
+namespace pdmpm::mpm {
+
+struct Energies {
+  double kinetic = 0.0;        // Σ ½ m |v|²
+  double strain = 0.0;         // Σ V₀ W (stored elastic energy)
+  double dissipated = 0.0;     // Σ V₀ ∫ τ : dε_p (plastic work)
+  double external_work = 0.0;  // work of body forces, tractions and particle external forces
+  double boundary_work = 0.0;  // work of the grid boundary reactions
+  double damping_work = 0.0;   // work of the grid damping forces (≤ 0)
+  // Conserved in the continuum: kinetic + strain + dissipated − external − boundary − damping.
+  double balance() const { return kinetic + strain + dissipated - external_work - boundary_work - damping_work; }
+};
+
+template <int D>
+class Simulation {
+ public:
+  // Validates the settings (InputError with `file` and `prefix` in the key path),
+  // builds the grid around the particles and initialises the MPM state of every
+  // real particle (whatever its kind, so a later switch to MPM finds it ready).
+  Simulation(Settings<D> settings, core::Particles<D>& particles, const std::string& file = "",
+             const std::string& prefix = "mpm");
+
+  // h / max_p (c_p + |v_p|): the CFL = 1 step of the grid wave speed.
+  double stable_dt() const;
+  // One step of settings.dt if set, else cfl × stable_dt(). Returns the step used.
+  double step();
+  // One step of the given size.
+  void step(double dt);
+
+  double time() const { return time_; }
+  std::int64_t step_count() const { return steps_; }
+  const Settings<D>& settings() const { return settings_; }
+  const Grid<D>& grid() const { return grid_; }
+  double cell_size() const { return grid_.h; }
+  const ParticleState<D>& state() const { return state_; }
+  const core::Particles<D>& particles() const { return particles_; }
+
+  // Indices of the particles the MPM step integrates (kind mpm/transition, real).
+  const std::vector<Index>& active() const { return active_; }
+  Energies energies() const;
+  Vec<D> momentum() const;
+  double total_mass() const;
+  // Force each boundary exerted on the body during the last step (N; volumes carry
+  // thickness / cross-section), in the order of settings.boundaries.
+  const std::vector<Vec<D>>& reactions() const { return reactions_; }
+
+  // Per-particle outputs.
+  double von_mises(Index p) const;
+  double triaxiality(Index p) const;
+  double eq_plastic_strain(Index p) const { return state_.history[p].eq_plastic_strain; }
+  bool failed(Index p) const { return state_.failed[p] != 0; }
+  // Particles that failed during the last step, ascending.
+  const std::vector<Index>& newly_failed() const { return newly_failed_; }
+
+  // Set a particle's deformation gradient and recompute its stress (initial
+  // states, tests). Plastic history is left as it is.
+  void set_deformation_gradient(Index p, const Mat<D>& F);
+  // Call after particles were added or changed kind outside the simulation:
+  // sizes the MPM state and initialises new slots.
+  void sync_particles();
+
+ private:
+  void initialise_particle(Index p);
+  void refresh_active();
+  void compute_stencils();
+  void scatter_mass_momentum(bool with_mass);
+  void scatter_forces();
+  void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
+  void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
+  void update_nonlocal();
+  Vec<D> external_force(Index p, double t) const;
+
+  Settings<D> settings_;
+  core::Particles<D>& particles_;
+  Constitutive<D> constitutive_;
+  Grid<D> grid_;
+  GridBoundary<D> boundary_;
+  ParticleState<D> state_;
+  ScatterSchedule<D> schedule_;
+  std::vector<Index> active_;
+  std::vector<Stencil<D>> stencil_;     // per particle, valid for active ones this step
+  std::vector<Vec<D>> ext_force_;       // per particle external force this step (N)
+  std::vector<std::vector<Index>> traction_particles_;
+  std::vector<Vec<D>> reactions_;
+  std::vector<Index> newly_failed_;
+  std::vector<std::uint8_t> failed_this_step_;
+  int K_ = 3;                           // nodes per axis of the shape function
+  double time_ = 0.0;
+  std::int64_t steps_ = 0;
+  double external_work_ = 0.0, boundary_work_ = 0.0, damping_work_ = 0.0;
+};
+
+}  // namespace pdmpm::mpm

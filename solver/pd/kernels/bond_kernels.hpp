@@ -1,0 +1,83 @@
+#pragma once
+// The bond loops of PMB and LPS, written for SIMD.
+//
+// Every particle sums its family in a canonical order: bond b of the family
+// (counted from the family's start) goes to lane b mod 8, each lane accumulates
+// its bonds in increasing order, and the eight lane sums are combined in a fixed
+// tree. The result therefore does not depend on the SIMD width the compiler
+// picks (SSE2, AVX2, AVX-512 — the same source is compiled once per instruction
+// set and chosen at run time) nor on the number of threads: every build on every
+// x86-64 machine gives bitwise identical forces. Broken bonds and padding lanes
+// are masked with selects, never multiplied by 0, so a degenerate bond cannot
+// turn into NaN.
+#include <cstdint>
+
+#include "solver/core/index.hpp"
+
+namespace pdmpm::pd::kernels {
+
+inline constexpr int lanes = 8;
+
+// Per-stencil-offset data, structure of arrays, each padded with `lanes` zeros
+// so a block starting at any stencil row can be loaded whole.
+struct BondShapeTable {
+  const double* xi[3];       // reference bond vector components
+  const double* length;      // |ξ|
+  const double* weight;      // ω β
+};
+
+// Bond arrays (neighbor, shape, broken) are padded with `lanes` entries past the
+// last bond (core::Families, pd::System), so a block may read 8 entries anywhere.
+struct FamilyView {
+  Index n_owners;
+  BondIndex stencil_size;   // a family this long is the whole stencil, in stencil order
+  const BondIndex* offsets;
+  const Index* neighbor;
+  const std::uint16_t* shape;
+  std::uint8_t* broken;
+};
+
+struct PmbArgs {
+  FamilyView fam;
+  BondShapeTable table;
+  const double* u;        // displacements, D per particle (real + ghosts)
+  const double* volume;   // per particle
+  double* f;              // force density out, D per real particle
+  double* energy;         // W_i out (nullptr: not computed)
+  double c;               // micromodulus
+  bool breaking;
+  double s0;
+  bool after_force;       // break after acting, at s > s₀ (LAMMPS) instead of before, at s ≥ s₀
+};
+
+struct LpsArgs {
+  FamilyView fam;
+  BondShapeTable table;
+  const double* u;
+  const double* volume;
+  const double* m;        // weighted volume, real + ghosts
+  double* theta;          // dilatation, real + ghosts (pass 1 writes real ones)
+  const double* alpha;    // A θ / m per particle (pass 2 reads, real + ghosts)
+  const double* beta;     // B / m per particle (0 where m = 0)
+  double* f;
+  double* energy;
+  double A, B, kappa, gamma;
+  int d;                  // dimension in θ = (d/m) Σ ω β |ξ| e V
+  bool breaking;
+  double s0;
+  bool after_force;       // as in PmbArgs: pass 1 keeps such bonds, pass 2 breaks them
+};
+
+// Each returns the number of bond sides broken by the call.
+template <int D>
+std::int64_t pmb_forces(const PmbArgs& a);
+template <int D>
+std::int64_t lps_dilatation(const LpsArgs& a);
+template <int D>
+std::int64_t lps_forces(const LpsArgs& a);
+
+// Which instruction set the dispatcher chose: "avx512", "avx2" or "sse2".
+// PDMPM_SIMD=sse2|avx2|avx512 in the environment forces a (supported) choice.
+const char* simd_level();
+
+}  // namespace pdmpm::pd::kernels

@@ -1,0 +1,231 @@
+// The bond loops, compiled once per instruction set: included by
+// bond_kernels_{sse2,avx2,avx512}.cpp with PDMPM_SIMD_NS and PDMPM_SIMD_SET set.
+// See bond_kernels.hpp for the canonical lane order that makes every build
+// give the same bits.
+//
+// Each block of eight bonds is done in two phases: a scalar gather of the
+// neighbours' data into lanes, then arithmetic on whole lane vectors
+// (lane_vector.hpp), with selects instead of branches.
+#include <algorithm>
+#include <cmath>
+
+#include "solver/pd/kernels/kernel_set.hpp"
+#include "solver/pd/kernels/lane_vector.hpp"
+
+namespace pdmpm::pd::kernels::PDMPM_SIMD_NS {
+namespace {
+
+inline double lane_sum(d8 v) { return ((v[0] + v[1]) + (v[2] + v[3])) + ((v[4] + v[5]) + (v[6] + v[7])); }
+
+inline d8 load8(const double* p) {
+  d8 v;
+  __builtin_memcpy(&v, p, sizeof v);
+  return v;
+}
+
+// One block of up to eight bonds of particle i, gathered into lanes.
+template <int D>
+struct Block {
+  d8 eta[D];  // η = u_j − u_i
+  d8 xi[D];   // ξ
+  d8 L;       // |ξ|
+  d8 wv;      // ω β V_j
+  m8 live;    // all ones for an intact bond, 0 for a broken bond or a padding lane
+  alignas(32) Index j[lanes];
+
+  // A particle whose family is the whole stencil has its bonds in stencil order,
+  // so ξ, |ξ| and ω β of a block are contiguous rows of the table (padded to a
+  // multiple of 8 lanes). Otherwise they are looked up through each bond's shape.
+  // Lanes past the family's end read the padded tail of the bond arrays and are
+  // masked out by `live`.
+  void gather(const FamilyView& fam, const BondShapeTable& T, const double* u, const double* ui, const double* volume,
+              BondIndex begin, BondIndex b0, int count, bool full_family) {
+    __builtin_memcpy(j, fam.neighbor + b0, sizeof j);
+    if (full_family) {
+      const BondIndex k0 = b0 - begin;
+      for (int d = 0; d < D; ++d) xi[d] = load8(T.xi[d] + k0);
+      L = load8(T.length + k0);
+      wv = load8(T.weight + k0);
+    } else {
+      const std::uint16_t* k = fam.shape + b0;
+      for (int d = 0; d < D; ++d)
+        xi[d] = d8{T.xi[d][k[0]], T.xi[d][k[1]], T.xi[d][k[2]], T.xi[d][k[3]],
+                   T.xi[d][k[4]], T.xi[d][k[5]], T.xi[d][k[6]], T.xi[d][k[7]]};
+      L = d8{T.length[k[0]], T.length[k[1]], T.length[k[2]], T.length[k[3]],
+             T.length[k[4]], T.length[k[5]], T.length[k[6]], T.length[k[7]]};
+      wv = d8{T.weight[k[0]], T.weight[k[1]], T.weight[k[2]], T.weight[k[3]],
+              T.weight[k[4]], T.weight[k[5]], T.weight[k[6]], T.weight[k[7]]};
+    }
+    for (int d = 0; d < D; ++d)
+      eta[d] = d8{u[D * j[0] + d], u[D * j[1] + d], u[D * j[2] + d], u[D * j[3] + d],
+                  u[D * j[4] + d], u[D * j[5] + d], u[D * j[6] + d], u[D * j[7] + d]} - ui[d];
+    wv *= d8{volume[j[0]], volume[j[1]], volume[j[2]], volume[j[3]],
+             volume[j[4]], volume[j[5]], volume[j[6]], volume[j[7]]};
+    const std::uint8_t* br = fam.broken + b0;
+    const m8 flags = {br[0], br[1], br[2], br[3], br[4], br[5], br[6], br[7]};
+    live = (flags == 0) & (lane_ids < count);
+  }
+};
+
+// Deformed bonds of a block: y = ξ + η, |y|, and num = 2 ξ·η + η·η = (|y| + |ξ|) e,
+// the extension numerator without cancellation.
+template <int D>
+struct Deformed {
+  d8 y[D];
+  d8 len, num;
+};
+
+template <int D>
+inline Deformed<D> deform(const Block<D>& B) {
+  Deformed<D> g;
+  d8 xe = splat(0.0), ee = splat(0.0), l2 = splat(0.0);
+  for (int d = 0; d < D; ++d) {
+    g.y[d] = B.xi[d] + B.eta[d];
+    xe += B.xi[d] * B.eta[d];
+    ee += B.eta[d] * B.eta[d];
+    l2 += g.y[d] * g.y[d];
+  }
+  g.len = sqrt8(l2);
+  g.num = 2.0 * xe + ee;
+  return g;
+}
+
+// Lanes where s = num / ((|y| + L) L) reaches s₀ (compared without the division):
+// s ≥ s₀, or s > s₀ for the break-after-force rule.
+inline m8 reaches_critical_stretch(const d8& num, const d8& len, const d8& L, double s0, bool strict) {
+  const d8 limit = s0 * L * (len + L);
+  return strict ? num > limit : num >= limit;
+}
+
+// Bonds of this block that just broke are marked; returns how many.
+inline std::int64_t mark_broken(const FamilyView& fam, BondIndex b0, int count, m8 breaks) {
+  std::int64_t n = 0;
+  for (int l = 0; l < count; ++l)
+    if (breaks[l]) {
+      fam.broken[b0 + l] = 1;
+      ++n;
+    }
+  return n;
+}
+
+template <int D, bool Energy>
+std::int64_t pmb(const PmbArgs& a) {
+  const FamilyView& fam = a.fam;
+  const m8 breaking = a.breaking ? m8{} - 1 : m8{};
+  const double s0 = a.s0, c = a.c;
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
+  for (Index i = 0; i < fam.n_owners; ++i) {
+    d8 acc[D], w = splat(0.0);
+    for (auto& x : acc) x = splat(0.0);
+    Block<D> B;
+    const double* ui = a.u + D * i;
+    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
+    const bool full = end - begin == fam.stencil_size;
+    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
+      const Deformed<D> g = deform<D>(B);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
+      const m8 acts = a.after_force ? B.live : B.live & ~breaks;
+      const d8 cw = c * B.wv;
+      const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
+      for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
+      if constexpr (Energy) {
+        const d8 s = g.num / ((g.len + B.L) * B.L);
+        w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
+      }
+      newly += mark_broken(fam, b0, count, breaks);
+    }
+    for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
+    if constexpr (Energy) a.energy[i] = lane_sum(w);
+  }
+  return newly;
+}
+
+template <int D>
+std::int64_t lps_dilatation(const LpsArgs& a) {
+  const FamilyView& fam = a.fam;
+  const m8 breaking = a.breaking && !a.after_force ? m8{} - 1 : m8{};
+  const double s0 = a.s0;
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
+  for (Index i = 0; i < fam.n_owners; ++i) {
+    d8 acc = splat(0.0);
+    Block<D> B;
+    const double* ui = a.u + D * i;
+    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
+    const bool full = end - begin == fam.stencil_size;
+    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
+      const Deformed<D> g = deform<D>(B);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+      const m8 acts = B.live & ~breaks;
+      acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
+      newly += mark_broken(fam, b0, count, breaks);
+    }
+    a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
+  }
+  return newly;
+}
+
+// Pair force (t_ij + t_ji) β V_j y/|y| with t = (A θ ω|ξ| + B ω e)/m, written as
+// ω β V_j [ |ξ| (α_i + α_j)(|y| + |ξ|) + (b_i + b_j) num ] / ((|y| + |ξ|) |y|),
+// α = Aθ/m and b = B/m per particle: one division per bond.
+template <int D, bool Energy>
+std::int64_t lps_forces(const LpsArgs& a) {
+  const FamilyView& fam = a.fam;
+  const m8 breaking = a.breaking && a.after_force ? m8{} - 1 : m8{};
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
+  for (Index i = 0; i < fam.n_owners; ++i) {
+    d8 acc[D], dev = splat(0.0);
+    for (auto& x : acc) x = splat(0.0);
+    Block<D> B;
+    d8 alpha_j = splat(0.0), beta_j = splat(0.0);
+    const double* ui = a.u + D * i;
+    const double alpha_i = a.alpha[i], beta_i = a.beta[i], theta_i = a.theta[i];
+    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
+    const bool full = end - begin == fam.stencil_size;
+    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
+      for (int l = 0; l < lanes; ++l) {
+        alpha_j[l] = a.alpha[B.j[l]];
+        beta_j[l] = a.beta[B.j[l]];
+      }
+      const Deformed<D> g = deform<D>(B);
+      const d8 coef = B.wv * (B.L * (alpha_i + alpha_j) * (g.len + B.L) + (beta_i + beta_j) * g.num) /
+                      ((g.len + B.L) * g.len);
+      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
+      if constexpr (Energy) {
+        const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
+        dev += keep(B.live, B.wv * ed * ed);
+      }
+      // Break-after-force rule: i's side only, which no other particle reads in this pass.
+      newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
+    }
+    for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
+    if constexpr (Energy) a.energy[i] = 0.5 * a.kappa * theta_i * theta_i + 0.5 * beta_i * lane_sum(dev);
+  }
+  return newly;
+}
+
+}  // namespace
+}  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS
+
+namespace pdmpm::pd::kernels {
+
+const KernelSet PDMPM_SIMD_SET = {
+    PDMPM_SIMD_NAME,
+    {{PDMPM_SIMD_NS::pmb<1, false>, PDMPM_SIMD_NS::pmb<1, true>},
+     {PDMPM_SIMD_NS::pmb<2, false>, PDMPM_SIMD_NS::pmb<2, true>},
+     {PDMPM_SIMD_NS::pmb<3, false>, PDMPM_SIMD_NS::pmb<3, true>}},
+    {PDMPM_SIMD_NS::lps_dilatation<1>, PDMPM_SIMD_NS::lps_dilatation<2>, PDMPM_SIMD_NS::lps_dilatation<3>},
+    {{PDMPM_SIMD_NS::lps_forces<1, false>, PDMPM_SIMD_NS::lps_forces<1, true>},
+     {PDMPM_SIMD_NS::lps_forces<2, false>, PDMPM_SIMD_NS::lps_forces<2, true>},
+     {PDMPM_SIMD_NS::lps_forces<3, false>, PDMPM_SIMD_NS::lps_forces<3, true>}},
+};
+
+}  // namespace pdmpm::pd::kernels
