@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "verification/gates/spherical_wave_run.hpp"
+#include "verification/support/convergence_fit.hpp"
 #include "verification/support/gate.hpp"
 
 namespace pdmpm {
@@ -35,6 +36,7 @@ namespace {
 
 using nlohmann::json;
 using namespace test::wave;
+using test::fitted_order;
 
 const char* problem = "convergence";
 
@@ -49,44 +51,11 @@ struct Point {
   double delta() const { return m * dx; }
 };
 
-Case find_case(const std::string& model, pd::Influence w) {
-  for (const auto& c : paper_cases())
-    if (c.model == model && c.influence == w) return c;
-  throw std::runtime_error("no such case");
-}
-
-// Least-squares slope of log y against log x.
-double fitted_order(const std::vector<double>& x, const std::vector<double>& y) {
-  const auto n = static_cast<double>(x.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    const double lx = std::log(x[k]), ly = std::log(y[k]);
-    sx += lx, sy += ly, sxx += lx * lx, sxy += lx * ly;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
-
-// e(m) = e∞ + C m^(−p): linear least squares in (e∞, C) for each p on a grid, best p.
-struct PowerFit {
-  double limit = 0, coefficient = 0, order = 0, residual = 0;
-};
-PowerFit fit_limit(const std::vector<double>& m, const std::vector<double>& e) {
-  PowerFit best;
-  best.residual = 1e300;
-  for (double p = 0.05; p <= 4.0; p += 0.01) {
-    double s1 = 0, sx = 0, sxx = 0, sy = 0, sxy = 0;
-    for (std::size_t k = 0; k < m.size(); ++k) {
-      const double x = std::pow(m[k], -p);
-      s1 += 1, sx += x, sxx += x * x, sy += e[k], sxy += x * e[k];
-    }
-    const double det = s1 * sxx - sx * sx;
-    const double C = (s1 * sxy - sx * sy) / det, L = (sy - C * sx) / s1;
-    double r = 0;
-    for (std::size_t k = 0; k < m.size(); ++k) r += std::pow(L + C * std::pow(m[k], -p) - e[k], 2);
-    if (r < best.residual) best = {L, C, p, r};
-  }
-  best.residual = std::sqrt(best.residual / static_cast<double>(m.size()));
-  return best;
+// e(m) = e∞ + C m^(−p), p searched in 0.05 … 4: a power fit in 1/m.
+test::PowerFit fit_limit(const std::vector<double>& m, const std::vector<double>& e) {
+  std::vector<double> inverse;
+  for (double v : m) inverse.push_back(1.0 / v);
+  return test::fit_power(inverse, e, 0.05, 4.0, 0.01);
 }
 
 class Study {

@@ -46,6 +46,7 @@
 #include "solver/sim/dynamic_relaxation.hpp"
 #include "solver/sim/pd_setup.hpp"
 #include "solver/sim/pd_state.hpp"
+#include "verification/support/convergence_fit.hpp"
 #include "verification/support/gate.hpp"
 
 namespace pdmpm {
@@ -158,35 +159,18 @@ Surface surface_factor() {
   return out;
 }
 
-struct Extrapolation {
-  double order = 0, limit = 0, coefficient = 0;
-};
-// Richardson from the three finest levels (refinement ratio 2).
-Extrapolation richardson(double k1, double k2, double k3) {
-  Extrapolation e;
+// Richardson from the three finest levels (refinement ratio 2): K = K∞ + C h^p.
+test::PowerFit richardson(double k1, double k2, double k3) {
+  test::PowerFit e;
   const double d1 = k2 - k1, d2 = k3 - k2;
   e.order = std::log(d1 / d2) / std::log(2.0);
   e.limit = k3 + d2 / (std::pow(2.0, e.order) - 1.0);
   return e;
 }
-// Least squares K = K∞ − C h^p over all levels (h = δ/a): for fixed p linear in
-// (K∞, C); with p < 0 the order is fitted too (grid search 0.1 … 3).
-Extrapolation power_fit(const std::vector<double>& h, const std::vector<double>& k, double p_fixed) {
-  Extrapolation best;
-  double best_r = 1e300;
-  for (double p = p_fixed > 0 ? p_fixed : 0.1; p <= (p_fixed > 0 ? p_fixed : 3.0) + 1e-12; p += 0.005) {
-    double s1 = 0, sx = 0, sxx = 0, sy = 0, sxy = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) {
-      const double x = std::pow(h[i], p);
-      s1 += 1, sx += x, sxx += x * x, sy += k[i], sxy += x * k[i];
-    }
-    const double C = (s1 * sxy - sx * sy) / (s1 * sxx - sx * sx), L = (sy - C * sx) / s1;
-    double r = 0;
-    for (std::size_t i = 0; i < h.size(); ++i) r += std::pow(L + C * std::pow(h[i], p) - k[i], 2);
-    if (r < best_r) best_r = r, best = {p, L, -C};
-  }
-  return best;
-}
+// Least squares K = K∞ + C h^p over all levels (h = δ/a; C < 0 when K rises as δ
+// falls): p = ½, or the order fitted too (grid 0.1 … 3).
+test::PowerFit half_order_fit(const std::vector<double>& h, const std::vector<double>& k) { return test::fit_power(h, k, 0.5, 0.5); }
+test::PowerFit free_order_fit(const std::vector<double>& h, const std::vector<double>& k) { return test::fit_power(h, k, 0.1, 3.0); }
 
 void study(const std::string& tier, const std::vector<int>& ns) {
   omp_set_num_threads(tier == "full" ? 2 : omp_get_max_threads());
@@ -203,8 +187,8 @@ void study(const std::string& tier, const std::vector<int>& ns) {
     x.push_back(lv.delta / a), ke.push_back(lv.k_edge), km.push_back(lv.k_max), kc.push_back(lv.k_edge / surf.edge);
   }
   const auto n3 = levels.size();
-  const auto raw_half = power_fit(x, ke, 0.5), corr_half = power_fit(x, kc, 0.5), corr_free = power_fit(x, kc, -1);
-  const auto raw_free = power_fit(x, ke, -1);
+  const auto raw_half = half_order_fit(x, ke), corr_half = half_order_fit(x, kc), corr_free = free_order_fit(x, kc);
+  const auto raw_free = free_order_fit(x, ke);
   const auto corr_rich = richardson(kc[n3 - 3], kc[n3 - 2], kc[n3 - 1]);
   const std::string t = tier == "full" ? "Full tier" : "Fast tier";
   test::record_data(problem, tier + "_1_levels",
@@ -233,7 +217,7 @@ void study(const std::string& tier, const std::vector<int>& ns) {
                                  "The raw edge value converges to K_t (1 + b), the corrected one to K_t. Free-order fits and Richardson "
                                  "react to the staircase's scatter (see the source's header for the order ½)."}});
   std::vector<double> rx = {0.0, x.front()}, ry = {kref, kref}, fit_x, fit_y;
-  for (double h = 0; h <= x.front() * 1.0001; h += x.front() / 100) fit_x.push_back(h), fit_y.push_back(corr_half.limit - corr_half.coefficient * std::sqrt(h));
+  for (double h = 0; h <= x.front() * 1.0001; h += x.front() / 100) fit_x.push_back(h), fit_y.push_back(corr_half.limit + corr_half.coefficient * std::sqrt(h));
   test::record_data(problem, tier + "_3_plot",
                     {{"kind", "plot"},
                      {"title", t + ": K against δ/a"},

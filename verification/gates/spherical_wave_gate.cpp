@@ -16,7 +16,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
 #include <map>
 #include <numbers>
 #include <sstream>
@@ -25,16 +24,16 @@
 
 #include "solver/core/particle_builder.hpp"
 #include "solver/sim/geometry_from_scene.hpp"
-#include "verification/gates/png_writer.hpp"
 #include "verification/gates/spherical_wave_run.hpp"
 #include "verification/support/gate.hpp"
+#include "verification/support/raster_image.hpp"
+#include "verification/support/scene_gate.hpp"
 
 namespace pdmpm {
 namespace {
 
 using nlohmann::json;
 using namespace test::wave;
-namespace fs = std::filesystem;
 
 const char* problem = "spherical_wave";
 
@@ -43,12 +42,6 @@ std::string fmt(double v, int digits = 4) {
   s.precision(digits);
   s << v;
   return s.str();
-}
-
-Case find_case(const std::string& model, pd::Influence w) {
-  for (const auto& c : paper_cases())
-    if (c.model == model && c.influence == w) return c;
-  throw std::runtime_error("no such case");
 }
 
 // ---------------------------------------------------------------------------
@@ -217,34 +210,26 @@ TEST(FastSphericalWave, CoarseOctantPmbQuadratic) {
 
 // Schlieren picture of |v| on z = 0 (seed eq 9.3: S = 0.8 |v| exp(−5 |v| / |v|_max),
 // taken literally; S/S_max → colour), one panel per time, left to right.
-std::string schlieren_png(const std::vector<Slice>& slices, const std::string& file) {
-  if (slices.empty()) return "";
-  const int n = slices.front().n, scale = std::max(2, 330 / n), gap = 6;
-  const int W = static_cast<int>(slices.size()) * (n * scale + gap) - gap, H = n * scale;
-  std::vector<std::uint8_t> rgb(static_cast<std::size_t>(W) * H * 3, 255);
-  for (std::size_t k = 0; k < slices.size(); ++k) {
-    const auto& sl = slices[k];
+test::Raster schlieren(const std::vector<Slice>& slices) {
+  std::vector<test::Raster> panels;
+  for (const auto& sl : slices) {
+    const int n = sl.n, scale = std::max(2, 330 / n);
     double vmax = 0;
     for (double v : sl.speed)
       if (std::isfinite(v)) vmax = std::max(vmax, v);
     const double Speak = 0.8 * vmax / (5.0 * std::numbers::e);  // max of 0.8 x e^{−5x/vmax}, at x = vmax/5
-    for (int y = 0; y < n; ++y)
+    test::Raster panel(n * scale, n * scale);
+    for (int row = 0; row < n; ++row)  // slice rows run top to bottom, raster y bottom to top
       for (int x = 0; x < n; ++x) {
-        const double v = sl.speed[static_cast<std::size_t>(y) * n + x];
-        std::array<std::uint8_t, 3> c = {235, 235, 235};
-        if (std::isfinite(v) && vmax > 0) c = test::png::viridis(0.8 * v * std::exp(-5.0 * v / vmax) / Speak);
-        for (int dy = 0; dy < scale; ++dy)
-          for (int dx = 0; dx < scale; ++dx) {
-            const auto X = static_cast<std::size_t>(static_cast<int>(k) * (n * scale + gap) + x * scale + dx);
-            const auto Y = static_cast<std::size_t>(y * scale + dy);
-            for (std::size_t ch = 0; ch < 3; ++ch) rgb[(Y * static_cast<std::size_t>(W) + X) * 3 + ch] = c[ch];
-          }
+        const double v = sl.speed[static_cast<std::size_t>(row) * static_cast<std::size_t>(n) + static_cast<std::size_t>(x)];
+        const test::Rgb c = std::isfinite(v) && vmax > 0 ? test::viridis(0.8 * v * std::exp(-5.0 * v / vmax) / Speak)
+                                                         : test::Rgb{235, 235, 235};
+        const int y = n - 1 - row;
+        panel.fill(x * scale, y * scale, (x + 1) * scale - 1, (y + 1) * scale - 1, c);
       }
+    panels.push_back(std::move(panel));
   }
-  const fs::path dir = fs::path(test::results_dir()) / "data" / problem;
-  fs::create_directories(dir);
-  EXPECT_TRUE(test::png::write_rgb((dir / file).string(), W, H, rgb));
-  return std::string("data/") + problem + "/" + file;
+  return test::grid(panels, static_cast<int>(panels.size()), 6);
 }
 
 json profile_plot(const std::string& title, const std::vector<std::pair<std::string, const Profile*>>& runs, const std::string& caption) {
@@ -359,17 +344,13 @@ TEST(FullSphericalWave, PaperResolution) {
   for (Reading rd : {Reading::octant, Reading::cube})
     for (const std::string key : {"pmb_quadratic", "lps_inverse_distance"}) {
       const auto& res = results.at(std::string(name(rd)) + "/" + key);
-      const std::string file = std::string("schlieren_") + name(rd) + "_" + key + ".png";
-      const auto path = schlieren_png(res.slices, file);
-      test::record_data(problem, std::string("06_schlieren_") + name(rd) + "_" + key,
-                        {{"kind", "image"},
-                         {"title", std::string("Schlieren of |v| on z = 0, ") + (key == "pmb_quadratic" ? "PMB quadratic (seed fig 9.3)" : "LPS ω = 1/r (seed fig 9.5)") +
-                                       ", " + name(rd) + " reading"},
-                         {"path", path},
-                         {"caption", "t = 1, 2, 3, 7 × 10⁻⁵ s from left to right, the whole plane −40 … 40 cm (the octant mirrored). "
-                                     "Colour = S/S_max with S = 0.8 |v| exp(−5 |v| / |v|_max) (seed eq 9.3 as printed; |v|_max per panel): "
-                                     "the scale peaks at |v| = |v|_max / 5, so weak waves show and the strongest motion near the source "
-                                     "fades. Grey: no particle (the cavity)."}});
+      test::record_image(problem, std::string("06_schlieren_") + name(rd) + "_" + key, schlieren(res.slices),
+                         std::string("Schlieren of |v| on z = 0, ") +
+                             (key == "pmb_quadratic" ? "PMB quadratic (seed fig 9.3)" : "LPS ω = 1/r (seed fig 9.5)") + ", " + name(rd) + " reading",
+                         "t = 1, 2, 3, 7 × 10⁻⁵ s from left to right, the whole plane −40 … 40 cm (the octant mirrored). "
+                         "Colour = S/S_max with S = 0.8 |v| exp(−5 |v| / |v|_max) (seed eq 9.3 as printed; |v|_max per panel): "
+                         "the scale peaks at |v| = |v|_max / 5, so weak waves show and the strongest motion near the source "
+                         "fades. Grey: no particle (the cavity).");
     }
 
   // Closing note: the measured errors of all eight cases in both readings, against

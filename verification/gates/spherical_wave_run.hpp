@@ -23,6 +23,7 @@
 #include <fstream>
 #include <map>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -70,6 +71,12 @@ inline std::vector<Case> paper_cases() {
   c.push_back({"LPS ω = 1", "lps", Influence::constant, 0.33});
   c.push_back({"LPS ω = 1/r", "lps", Influence::inverse_distance, 0.33});
   return c;
+}
+
+inline Case find_case(const std::string& model, pd::Influence w) {
+  for (const auto& c : paper_cases())
+    if (c.model == model && c.influence == w) return c;
+  throw std::runtime_error("no such case");
 }
 
 struct Config {
