@@ -304,6 +304,23 @@ def check_plot(obj: dict) -> None:
         for v in x + y:
             if v is not None and not is_number(v):   # null stands for a non-finite value
                 raise Bad(f"series {i} has a value that is {type_name(v)}; values are numbers or null")
+        for key in ("ylo", "yhi"):                   # optional error bar ends, one per point
+            if key not in s:
+                continue
+            bar = s[key]
+            if not isinstance(bar, list) or len(bar) != len(y):
+                raise Bad(f'"{key}"{where} must be a list as long as "y" ({len(y)} values)')
+            if any(v is not None and not is_number(v) for v in bar):
+                raise Bad(f'"{key}"{where} must hold numbers or null')
+        if ("ylo" in s) != ("yhi" in s):
+            raise Bad(f'"ylo" and "yhi"{where} come together')
+    xticks = obj.get("xticks")
+    if xticks is not None:                            # optional: category labels at given x
+        need_object(xticks, '"xticks"')
+        values, labels = xticks.get("values"), xticks.get("labels")
+        if (not isinstance(values, list) or not isinstance(labels, list) or len(values) != len(labels)
+                or not all(is_number(v) for v in values) or not all(isinstance(t, str) for t in labels)):
+            raise Bad('"xticks" must have "values" (numbers) and "labels" (strings) of equal length')
 
 
 _IMAGE_TYPES = {b"\x89PNG\r\n\x1a\n": "image/png", b"\xff\xd8\xff": "image/jpeg"}

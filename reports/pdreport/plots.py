@@ -91,7 +91,11 @@ def _draw(spec: dict) -> tuple[str, list[str]]:
         shown_y += ys
         label = s.get("label") or None
         labelled |= label is not None
-        ax.plot(xs, ys, label=label, **_STYLE[s.get("style", "line")])
+        lines = ax.plot(xs, ys, label=label, **_STYLE[s.get("style", "line")])
+        if "ylo" in s:   # error bars (e.g. a confidence interval) in the series' colour
+            lo, hi = [_value(v) for v in s["ylo"]], [_value(v) for v in s["yhi"]]
+            ax.vlines(xs, lo, hi, colors=lines[0].get_color(), linewidth=1.2)
+            shown_y += lo + hi
         if not any(math.isfinite(x) and math.isfinite(y) for x, y in zip(xs, ys)):
             notes.append(f"series “{label or '?'}” has no point to show.")
         elif hidden:
@@ -107,6 +111,9 @@ def _draw(spec: dict) -> tuple[str, list[str]]:
         # Linear axes: 1e-4 as "1" with a ×10⁻⁴ offset, not as 0.000100.
         ax.ticklabel_format(axis="both" if len(linear) == 2 else linear[0],
                             style="sci", scilimits=(-3, 4), useMathText=True)
+    if "xticks" in spec:
+        ax.set_xticks(spec["xticks"]["values"], spec["xticks"]["labels"])
+        ax.margins(x=0.15)
     ax.set_xlabel(spec.get("xlabel", ""))
     ax.set_ylabel(spec.get("ylabel", ""))
     ax.grid(True, which="major", alpha=0.35)

@@ -114,6 +114,19 @@ class GoodInputs(ReportTestCase):
         self.assertIn("No benchmark results", page)
 
 
+class PlotOptions(ReportTestCase):
+    def test_error_bars_and_category_ticks_render(self):
+        path = self.results / "data" / "fixture_bar" / "04_bars.json"
+        path.write_text(json.dumps({"kind": "plot", "title": "Rates with intervals", "yscale": "log",
+                                    "xticks": {"values": [1, 2], "labels": ["PMB", "LPS"]},
+                                    "series": [{"label": "a", "x": [1, 2], "y": [3e8, 1e8], "style": "points",
+                                                "ylo": [2.5e8, None], "yhi": [3.5e8, None]}]}))
+        proc, page = self.run_report()
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("Rates with intervals", page)
+        self.assertGreaterEqual(page.count("data:image/png;base64,"), 4)
+
+
 class FailingGates(ReportTestCase):
     def test_failed_gate_gives_status_1_and_a_red_row(self):
         gid = "fixture.bar.convergence_order"
@@ -195,6 +208,12 @@ class MalformedInputs(ReportTestCase):
         page = self.check_malformed(path, ['"x" has 81 values but "y" has 78'])
         self.assertIn("Displacement field snapshot", page)   # the next item still renders
         self.assertIn("INCOMPLETE", page)            # no gate failed, but not everything is there
+
+    def test_error_bars_must_match_the_points(self):
+        path = self.results / "data" / "fixture_bar" / "04_bars.json"
+        path.write_text(json.dumps({"kind": "plot", "title": "Rates",
+                                    "series": [{"x": [1, 2], "y": [3, 4], "ylo": [2], "yhi": [4, 5]}]}))
+        self.check_malformed(path, ['"ylo" in series 0 must be a list as long as "y"'])
 
     def test_unknown_evidence_kind(self):
         path = self.results / "data" / "fixture_bar" / "04_movie.json"

@@ -24,11 +24,15 @@ int run_command(const RunArgs& args) {
       std::cerr << "pdmpm: outputs up to the failure are in " << opt.out_dir.string() << "\n";
       return r.exit_code;
     }
-    if (!args.quiet)
-      std::cerr << fmt::format("pdmpm: {} done: {} particles, {} bonds, {} steps of {:.4g} s in {:.3g} s ({:.3g} bond updates/s) → {}\n",
-                               scene.id, s["particles"].get<long>(), s["bonds"].get<long>(), s["steps"].get<long>(),
-                               s["dt"].get<double>(), s["wall_time_s"].get<double>(),
-                               s["bond_updates_per_second"].get<double>(), opt.out_dir.string());
+    if (!args.quiet) {
+      const std::string rate = s["solver"] == "mpm"
+                                   ? fmt::format("{:.3g} particle-steps/s", s["particle_steps_per_second"].get<double>())
+                                   : fmt::format("{} bonds, {:.3g} bond updates/s", s["bonds"].get<long>(),
+                                                 s["bond_updates_per_second"].get<double>());
+      std::cerr << fmt::format("pdmpm: {} done: {} particles, {} steps of {:.4g} s in {:.3g} s ({}) → {}\n", scene.id,
+                               s["particles"].get<long>(), s["steps"].get<long>(), s["dt"].get<double>(),
+                               s["wall_time_s"].get<double>(), rate, opt.out_dir.string());
+    }
     return 0;
   } catch (const InputError& e) {
     std::cerr << "pdmpm: error: " << e.what() << "\n";

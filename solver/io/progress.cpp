@@ -117,7 +117,7 @@ std::string Progress::status(std::int64_t step, double time, std::int64_t broken
     text += fmt::format("  ETA {}", format_duration(elapsed * (1.0 - f) / f));
   else
     text += "  ETA --";
-  text += fmt::format("  broken {}", broken_bonds);
+  text += fmt::format("  {} {}", counter_name_, broken_bonds);
   return text;
 }
 
@@ -178,8 +178,8 @@ void Progress::finish(std::int64_t step, double time, std::int64_t broken_bonds)
   finished_ = true;
   const double elapsed = clock_() - start_;
   std::string line = label_.empty() ? "" : label_ + " ";
-  line += fmt::format("done: step {}  t = {}  wall {}  broken {}", step, format_engineering(time, "s"),
-                      format_duration(elapsed), broken_bonds);
+  line += fmt::format("done: step {}  t = {}  wall {}  {} {}", step, format_engineering(time, "s"),
+                      format_duration(elapsed), counter_name_, broken_bonds);
   draw(line, true);
   countdown_ = kMaxStride;
   next_report_time_ = std::numeric_limits<double>::infinity();

@@ -12,6 +12,7 @@
 #include <limits>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <string_view>
 
 namespace pdmpm::io {
@@ -39,6 +40,8 @@ class Progress {
   void finish(std::int64_t step, double time, std::int64_t broken_bonds);
 
   static bool stderr_is_terminal();
+  // What the count in each line is called ("broken" bonds for PD, "failed" particles for MPM).
+  void set_counter_name(std::string name) { counter_name_ = std::move(name); }
 
  private:
   void slow_update(std::int64_t step, double time, std::int64_t broken_bonds);
@@ -52,6 +55,7 @@ class Progress {
   std::int64_t total_steps_;
   double end_time_;
   std::string label_;
+  std::string counter_name_ = "broken";
   Clock clock_;
   bool by_time_;
 

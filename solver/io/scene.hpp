@@ -137,6 +137,7 @@ struct Scene {
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
   bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
+  bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
 
@@ -163,6 +164,9 @@ const std::vector<std::string>& mpm_field_names();
 class TomlReader;
 void read_mpm_material(const TomlReader& material, Scene& s);
 void read_mpm_options(const TomlReader& table, Scene& s);
+// Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,
+// displacement/analytic boundaries, non-box regions) for model type "mpm".
+void check_mpm_scene(const Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.
 Scene parse_scene(const std::string& path);

@@ -1,4 +1,5 @@
 // The MPM parts of a scene: constitutive keys of [material] and the [mpm] table.
+#include "solver/core/error.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/io/toml_reader.hpp"
 
@@ -48,6 +49,22 @@ void read_mpm_options(const TomlReader& t, Scene& s) {
     n->finish();
   }
   t.finish();
+}
+
+void check_mpm_scene(const Scene& s) {
+  auto fail = [&](const std::string& key, const std::string& why) { throw InputError(s.file, key, why); };
+  if (!s.precracks.empty()) fail("precrack[0]", "pre-cracks cut PD bonds; the mpm model has none (model a notch as a subtracted shape)");
+  if (s.indenter) fail("indenter", "only for the peridynamic models");
+  if (s.crack.enabled) fail(s.observes.empty() ? "crack" : s.observes.front().key, "crack observables need PD bonds (pmb, lps)");
+  if (s.time.safety_factor > 1.0) fail("time.safety_factor", "is the CFL number of the mpm model: must be in (0, 1]");
+  // Grid boundary conditions select the grid nodes inside a box; tractions the particles in it.
+  for (const auto& b : s.boundaries) {
+    if (b.kind == BoundaryKind::displacement || b.kind == BoundaryKind::analytic)
+      fail(b.key + ".kind", "the mpm model constrains grid velocities: use kind = \"fixed\", \"velocity\" or \"traction\"");
+    for (std::size_t k = 0; k < b.region.size(); ++k)
+      if (b.region[k].type != "box" || b.region[k].subtract)
+        fail(b.region[k].key, "the mpm model takes boundary regions as boxes (type = \"box\"/\"rectangle\", added)");
+  }
 }
 
 const std::vector<std::string>& mpm_field_names() {

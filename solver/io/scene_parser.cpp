@@ -134,6 +134,12 @@ void read_model(const TomlReader& m, Scene& s) {
       m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
     s.break_after_force = *bt == "after_force";
   }
+  if (auto wv = m.optional_string("weighted_volume")) {
+    if (s.model != "lps") m.fail("weighted_volume", "only for type = \"lps\"");
+    if (*wv != "discrete" && *wv != "continuum")
+      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, seed 004 eq 15); got \"" + *wv + "\"");
+    s.continuum_weighted_volume = *wv == "continuum";
+  }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);
     if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
@@ -444,6 +450,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   if (auto o = root.optional_table("output")) read_output(*o, s);
   else s.output.fields = s.is_mpm() ? mpm_field_names() : field_names();
   root.finish();
+  if (s.is_mpm()) check_mpm_scene(s);
   return s;
 }
 

@@ -65,6 +65,7 @@ class Simulation {
   std::int64_t step_count() const { return steps_; }
   const Settings<D>& settings() const { return settings_; }
   const Grid<D>& grid() const { return grid_; }
+  const GridBoundary<D>& boundary() const { return boundary_; }
   double cell_size() const { return grid_.h; }
   const ParticleState<D>& state() const { return state_; }
   const core::Particles<D>& particles() const { return particles_; }

@@ -17,7 +17,10 @@ std::pair<double, double> Lps<D>::poisson_range(Setting s) const {
 template <int D>
 void Lps<D>::initialise(const System<D>& sys) {
   k_ = lps_coefficients(sys.setting, sys.material);
-  m_ = weighted_volumes(sys);
+  if (sys.continuum_weighted_volume)
+    m_.assign(sys.particles.size(), lps_weighted_volume(sys.influence, sys.setting, sys.delta, sys.measure));
+  else
+    m_ = weighted_volumes(sys);
   const auto n = m_.size();
   theta_.assign(n, 0.0);
   alpha_.assign(n, 0.0);

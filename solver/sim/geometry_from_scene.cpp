@@ -3,6 +3,14 @@
 namespace pdmpm::sim {
 
 template <int D>
+core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g) {
+  core::Lattice<D> lat;
+  lat.spacing = s.spacing;
+  lat.origin = s.lattice_origin ? to_vec<D>(*s.lattice_origin) : Vec<D>(g.bounds().min + Vec<D>::Constant(0.5 * s.spacing));
+  return lat;
+}
+
+template <int D>
 core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes) {
   core::Geometry<D> g;
   for (const auto& s : shapes) {
@@ -35,6 +43,9 @@ template core::Geometry<2> make_geometry<2>(const std::vector<io::ShapeSpec>&);
 template core::Geometry<3> make_geometry<3>(const std::vector<io::ShapeSpec>&);
 template std::vector<Index> select_particles<1>(const std::vector<Vec<1>>&, Index, const core::Geometry<1>&, double);
 template std::vector<Index> select_particles<2>(const std::vector<Vec<2>>&, Index, const core::Geometry<2>&, double);
+template core::Lattice<1> make_lattice<1>(const io::Scene&, const core::Geometry<1>&);
+template core::Lattice<2> make_lattice<2>(const io::Scene&, const core::Geometry<2>&);
+template core::Lattice<3> make_lattice<3>(const io::Scene&, const core::Geometry<3>&);
 template std::vector<Index> select_particles<3>(const std::vector<Vec<3>>&, Index, const core::Geometry<3>&, double);
 
 }  // namespace pdmpm::sim

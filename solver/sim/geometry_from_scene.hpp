@@ -2,6 +2,7 @@
 // Turns scene shape specifications into core geometry.
 #include <vector>
 
+#include "solver/core/lattice.hpp"
 #include "solver/core/shapes.hpp"
 #include "solver/io/scene.hpp"
 
@@ -9,6 +10,12 @@ namespace pdmpm::sim {
 
 template <int D>
 core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes);
+
+// The scene's lattice: spacing Δx; sites cell-centred by default (the first half a
+// spacing inside the body's lower corner, N sites across a length N Δx), or through
+// discretization.lattice_origin.
+template <int D>
+core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g);
 
 // Real particles whose reference position lies in the region (boundaries included).
 template <int D>

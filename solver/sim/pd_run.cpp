@@ -1,7 +1,6 @@
 #include "solver/sim/pd_run.hpp"
 
 #include <omp.h>
-#include <sys/resource.h>
 
 #include <algorithm>
 #include <chrono>
@@ -21,24 +20,13 @@
 #include "solver/pd/damage.hpp"
 #include "solver/pd/stress.hpp"
 #include "solver/sim/dynamic_relaxation.hpp"
+#include "solver/sim/output_schedule.hpp"
+#include "solver/sim/run_metrics.hpp"
 #include "solver/sim/verlet.hpp"
 #include "solver/time/stable_step.hpp"
 
 namespace pdmpm::sim {
 namespace {
-
-const char* axis_name(int a) { return a == 0 ? "x" : a == 1 ? "y" : "z"; }
-
-// Peak resident memory of this process so far (bytes).
-double peak_memory_bytes() {
-  rusage r{};
-  getrusage(RUSAGE_SELF, &r);
-  return static_cast<double>(r.ru_maxrss) * 1024.0;
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 template <int D>
 class PdRun {
@@ -211,26 +199,11 @@ void PdRun<D>::choose_time_step() {
 
 template <int D>
 void PdRun<D>::plan_outputs() {
-  history_every_ = scene_.output.history_every.value_or(std::max<std::int64_t>(1, total_steps_ / 1000));
+  history_every_ = history_interval(scene_.output, total_steps_);
   energy_every_ = std::min<std::int64_t>(history_every_, 10);
-  if (scene_.output.every) {
-    for (std::int64_t s = 0; s <= total_steps_; s += *scene_.output.every) frame_steps_.push_back(s);
-  } else if (!scene_.output.frame_times.empty()) {
-    // The step nearest each requested time (ADR: t is the load factor, one per load step).
-    frame_steps_.push_back(0);
-    for (double t : scene_.output.frame_times) {
-      const double per_step = scene_.time.integrator == io::Integrator::verlet ? dt_ : 1.0 / static_cast<double>(total_steps_);
-      frame_steps_.push_back(std::clamp<std::int64_t>(std::llround(t / per_step), 0, total_steps_));
-    }
-    std::sort(frame_steps_.begin(), frame_steps_.end());
-    frame_steps_.erase(std::unique(frame_steps_.begin(), frame_steps_.end()), frame_steps_.end());
-  } else {
-    const std::int64_t frames = scene_.output.frames.value_or(std::min<std::int64_t>(11, total_steps_ + 1));
-    for (std::int64_t k = 0; k < frames; ++k)
-      frame_steps_.push_back(frames == 1 ? total_steps_ : (k * total_steps_) / (frames - 1));
-    frame_steps_.erase(std::unique(frame_steps_.begin(), frame_steps_.end()), frame_steps_.end());
-  }
-  if (frame_steps_.empty() || frame_steps_.back() != total_steps_) frame_steps_.push_back(total_steps_);
+  // ADR: t is the load factor, one per load step.
+  const double per_step = scene_.time.integrator == io::Integrator::verlet ? dt_ : 1.0 / static_cast<double>(total_steps_);
+  frame_steps_ = frame_steps(scene_.output, total_steps_, per_step);
 }
 
 template <int D>
@@ -451,6 +424,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"model", s_.model->name()},
       {"influence", std::string(pd::name(sys.influence))},
       {"partial_volume", std::string(pd::name(sys.partial_volume))},
+      {"weighted_volume", sys.continuum_weighted_volume ? "continuum" : "discrete"},
       {"dimension", D},
       {"setting", std::string(pd::name(sys.setting))},
       {"spacing", sys.spacing()},
@@ -469,6 +443,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"threads", omp_get_max_threads()},
       {"wall_time_s", wall},
       {"force_time_s", state_.force_seconds()},
+      {"contact_time_s", state_.contact_seconds()},
       {"bond_updates_per_second",
        state_.force_seconds() > 0 ? static_cast<double>(state_.bond_evaluations()) / state_.force_seconds() : 0.0},
       {"peak_memory_bytes", peak_memory_bytes()},
@@ -506,17 +481,7 @@ RunResult PdRun<D>::run() {
   if (fields_) fields_->close();
   history_.reset();
 
-  RunResult r;
-  r.status = status_;
-  r.message = message_;
-  r.summary = summary(seconds_since(t0));
-  {
-    std::ofstream js(out_->path("summary.json"));
-    js << r.summary.dump(2) << '\n';
-  }
-  out_->commit();
-  r.exit_code = status_ == "completed" ? 0 : 3;
-  return r;
+  return commit_run(*out_, status_, message_, summary(seconds_since(t0)));
 }
 
 }  // namespace

@@ -13,16 +13,6 @@ namespace pdmpm::sim {
 namespace {
 
 template <int D>
-core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g) {
-  core::Lattice<D> lat;
-  lat.spacing = s.spacing;
-  // Default: cell-centred sites, the first half a spacing inside the body's
-  // lower corner (N sites across a length N Δx).
-  lat.origin = s.lattice_origin ? to_vec<D>(*s.lattice_origin) : Vec<D>(g.bounds().min + Vec<D>::Constant(0.5 * s.spacing));
-  return lat;
-}
-
-template <int D>
 void add_constraint(const io::Scene& s, const io::BoundarySpec& b, std::vector<Index> particles, PdSetup<D>& out) {
   bc::Constraint<D> c;
   c.name = b.name;
@@ -62,6 +52,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
   sys.measure = D == 3 ? 1.0 : s.measure;
   sys.influence = s.influence;
   sys.partial_volume = s.partial_volume;
+  sys.continuum_weighted_volume = s.continuum_weighted_volume;
 
   std::vector<bc::SymmetryPlane> planes;
   for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
@@ -124,18 +115,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
     out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor, s.contact.max_distance,
                                                s.contact.bonded_pairs}, c);
   }
-  for (std::size_t k = 0; k < s.probes.size(); ++k) {
-    const Vec<D> x = to_vec<D>(s.probes[k].point);
-    Index best = -1;
-    double dist = 1e300;
-    for (Index i = 0; i < sys.particles.n_real; ++i) {
-      const double d = (sys.particles.x0[i] - x).norm();
-      if (d < dist) dist = d, best = i;
-    }
-    if (dist > s.spacing * std::sqrt(static_cast<double>(D)))
-      throw InputError(s.file, "probe[" + std::to_string(k) + "].point", "is not inside the body (no particle within √D Δx)");
-    out.probes.push_back({s.probes[k].name, best});
-  }
+  out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
   if (s.crack.enabled) {
     out.crack = pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
     out.crack_exclude.assign(static_cast<std::size_t>(sys.particles.n_real), 0);

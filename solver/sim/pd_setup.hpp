@@ -15,14 +15,9 @@
 #include "solver/pd/contact.hpp"
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/model.hpp"
+#include "solver/sim/probes.hpp"
 
 namespace pdmpm::sim {
-
-template <int D>
-struct Probe {
-  std::string name;
-  Index particle = -1;
-};
 
 template <int D>
 struct PdSetup {
@@ -33,7 +28,7 @@ struct PdSetup {
   bool has_body_force = false;
   std::optional<bc::Indenter<D>> indenter;
   std::optional<pd::ShortRangeContact<D>> contact;
-  std::vector<Probe<D>> probes;
+  std::vector<Probe> probes;
   double critical_stretch = 0.0;  // 0 when damage is off
   bool damage = false;
   bool break_after_force = false;  // LAMMPS' bond-break timing (scene model.break_timing)

@@ -36,7 +36,11 @@ void PdState<D>::internal_forces(bool energy) {
   broken_sides_ += s_.model->compute_forces(s_.system, req);
   force_seconds_ += omp_get_wtime() - t0;
   bond_evaluations_ += s_.system.families.n_bonds();
-  if (s_.contact) contact_pairs_ = s_.contact->add_forces(s_.system);
+  if (s_.contact) {
+    const double t1 = omp_get_wtime();
+    contact_pairs_ = s_.contact->add_forces(s_.system);
+    contact_seconds_ += omp_get_wtime() - t1;
+  }
 }
 
 template <int D>

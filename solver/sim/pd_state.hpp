@@ -32,7 +32,8 @@ class PdState {
   std::int64_t broken_bonds() const { return broken_sides_ / 2; }
   std::int64_t contact_pairs() const { return contact_pairs_; }
   const Vec<D>& indenter_force() const { return indenter_force_; }
-  double force_seconds() const { return force_seconds_; }
+  double force_seconds() const { return force_seconds_; }  // the model's bond loops
+  double contact_seconds() const { return contact_seconds_; }  // short-range contact (LAMMPS times it in "Pair" too)
   std::int64_t bond_evaluations() const { return bond_evaluations_; }
 
  private:
@@ -40,7 +41,7 @@ class PdState {
   std::vector<double> energy_;
   std::int64_t broken_sides_ = 0, contact_pairs_ = 0, bond_evaluations_ = 0;
   Vec<D> indenter_force_ = Vec<D>::Zero();
-  double force_seconds_ = 0.0;
+  double force_seconds_ = 0.0, contact_seconds_ = 0.0;
 };
 
 }  // namespace pdmpm::sim

@@ -2,6 +2,11 @@
 
 #include <omp.h>
 
+#include <fstream>
+#include <utility>
+
+#include "solver/io/output_directory.hpp"
+#include "solver/sim/mpm_run.hpp"
 #include "solver/sim/pd_run.hpp"
 
 namespace pdmpm::sim {
@@ -9,11 +14,29 @@ namespace {
 
 template <int D>
 RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
+  if (scene.is_mpm()) {
+    auto setup = build_mpm<D>(scene);
+    return run_mpm<D>(scene, setup, options);
+  }
   auto setup = build_pd<D>(scene);
   return run_pd<D>(scene, setup, options);
 }
 
 }  // namespace
+
+RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary) {
+  RunResult r;
+  r.exit_code = status == "completed" ? 0 : 3;
+  r.status = std::move(status);
+  r.message = std::move(message);
+  r.summary = std::move(summary);
+  {
+    std::ofstream js(out.path("summary.json"));
+    js << r.summary.dump(2) << '\n';
+  }
+  out.commit();
+  return r;
+}
 
 RunResult run_scene(const io::Scene& scene, const RunOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);

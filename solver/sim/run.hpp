@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/io/output_directory.hpp"
 #include "solver/io/scene.hpp"
 
 namespace pdmpm::sim {
@@ -24,6 +25,10 @@ struct RunResult {
   nlohmann::json summary;
   int exit_code = 0;        // 0 completed, 3 unstable or not converged
 };
+
+// Writes summary.json into the staged output directory and commits it (the last
+// step of every run, PD or MPM); exit code 0 for "completed", 3 otherwise.
+RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary);
 
 // Throws InputError for problems found while building the model (before any
 // output exists); run-time failures are reported in the result.

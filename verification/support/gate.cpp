@@ -70,7 +70,7 @@ bool passes(const Gate& g) {
   return false;
 }
 
-void record_gate(const Gate& g) {
+bool write_gate(const Gate& g, const std::string& writer) {
   ensure_provenance();
   const bool ok = passes(g);
   nlohmann::json j = {{"id", g.id},
@@ -84,11 +84,15 @@ void record_gate(const Gate& g) {
                       {"unit", g.unit},
                       {"problem", g.problem},
                       {"verdict", ok ? "PASS" : "FAIL"},
-                      {"test", ::testing::UnitTest::GetInstance()->current_test_info()
-                                   ? std::string(::testing::UnitTest::GetInstance()->current_test_info()->test_suite_name()) +
-                                         "." + ::testing::UnitTest::GetInstance()->current_test_info()->name()
-                                   : std::string()}};
+                      {"test", writer}};
   write_json(fs::path(results_dir()) / "gates" / (g.id + ".json"), j);
+  return ok;
+}
+
+void record_gate(const Gate& g) {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const bool ok =
+      write_gate(g, info ? std::string(info->test_suite_name()) + "." + info->name() : std::string());
   EXPECT_TRUE(ok) << "gate " << g.id << " FAILED: " << g.claim << "\n  measured " << g.measured << ", expected "
                   << g.expected << " (" << compare_name(g.compare) << ", tolerance " << g.tolerance << ")";
   EXPECT_FALSE(g.tolerance_reason.empty()) << "gate " << g.id << " has no tolerance reason";

@@ -31,6 +31,10 @@ struct Gate {
 bool passes(const Gate& g);
 // Writes the gate file and fails the current GoogleTest test if the gate fails.
 void record_gate(const Gate& g);
+// Writes the gate file only and returns passes(g): for programs that are not
+// GoogleTest tests (benchmarks/perf records its targets this way, since a timing
+// is not a unit test). `writer` names the program in the file's "test" field.
+bool write_gate(const Gate& g, const std::string& writer);
 
 // Evidence for the report (tables, curves): <build>/results/data/<problem>/<name>.json
 void record_data(const std::string& problem, const std::string& name, const nlohmann::json& data);

@@ -130,7 +130,9 @@ Input make_input(const io::Scene& scene, const sim::PdSetup<3>& setup, const Opt
        << cons[k].name << " (fixed)\n";
   const std::int64_t every = o.dump_every > 0 ? o.dump_every : o.steps;
   in << "compute damage all damage/atom\n"
-     << "timestep " << g17(o.dt) << "\nthermo " << o.steps << "\n"
+     << "timestep " << g17(o.dt) << "\n"
+     << "run 0 post no   # builds the bond families, so the real run starts with every s0 set (lammps.hpp)\n"
+     << "thermo " << o.steps << "\n"
      << "dump fields all custom " << every << " dump.pdmpm id x y z vx vy vz c_damage\n"
      << "dump_modify fields sort id format float %.17g\n"
      << "run " << o.steps << "\n";
@@ -197,11 +199,29 @@ Result run(const io::Scene& scene, const sim::PdSetup<3>& setup, const Options& 
                              o.work_dir.string() + "; log tail:\n" + tail + read_text(o.work_dir / "lmp.out"));
   }
   std::smatch m;
-  if (std::regex_search(r.log, m, std::regex(R"(Loop time of ([0-9.eE+-]+) on)"))) r.loop_seconds = std::stod(m[1]);
+  // The last run's loop (the first is the `run 0` that builds the families).
+  static const std::regex loop(R"(Loop time of ([0-9.eE+-]+) on)");
+  for (std::sregex_iterator it(r.log.begin(), r.log.end(), loop), end; it != end; ++it) r.loop_seconds = std::stod((*it)[1]);
   if (std::regex_search(r.log, m, std::regex(R"(total # of bonds = ([0-9]+))"))) r.bonds = std::stoll(m[1]);
   if (std::regex_search(r.log, m, std::regex(R"(LAMMPS \(([^)]*)\))"))) r.version = m[1];
+  r.sections = timing_breakdown(r.log);
+  if (std::regex_search(r.log, m, std::regex(R"(memory allocation \(min/avg/max\) = [0-9.eE+-]+ \| [0-9.eE+-]+ \| ([0-9.eE+-]+) Mbytes)")))
+    r.memory_mbytes = std::stod(m[1]);
   r.frames = read_dump(o.work_dir / "dump.pdmpm", static_cast<std::size_t>(setup.system.particles.n_real));
   return r;
+}
+
+std::map<std::string, double> timing_breakdown(const std::string& log) {
+  // Rows like "Pair    | 1.9884     | 1.9884     | 1.9884     |   0.0 | 98.37"; "Other" has
+  // only the average column filled. The last run's table wins.
+  std::map<std::string, double> sections;
+  static const std::regex row(R"((Pair|Bond|Kspace|Neigh|Comm|Output|Modify|Other)\s*\|\s*([0-9.eE+-]*)\s*\|\s*([0-9.eE+-]+))");
+  std::istringstream in(log);
+  std::string line;
+  std::smatch m;
+  while (std::getline(in, line))
+    if (std::regex_search(line, m, row) && m.position(0) == 0) sections[m[1]] = std::stod(m[3]);
+  return sections;
 }
 
 std::int64_t broken_sides_from_damage(const std::vector<double>& damage, const core::Families<3>& families) {

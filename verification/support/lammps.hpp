@@ -21,8 +21,13 @@
 //    peri/lps: 3D LPS with ω = 1/|ξ| (pdmpm influence "inverse_distance").
 //  - critical stretch: s₀ = s00 − α·(min bond stretch of the previous step); the
 //    translation sets α = 0 (pdmpm's fixed s₀). A bond breaks after its force
-//    has been applied in that step (pdmpm: before) and only from the second
-//    step on (s₀ starts at DBL_MAX).
+//    has been applied in that step (pdmpm: before).
+//  - LAMMPS builds the bond families (fix PERI_NEIGH setup) only after the force
+//    evaluation of a run's set-up, so that evaluation leaves each atom's s₀ at an
+//    uninitialised value (s0_new is never written) and bonds break at random in
+//    the first step: seen with peri/lps (damage with s₀₀ = 1e100; displacements
+//    1 % off by step 10). The input therefore starts with `run 0`, whose set-up
+//    builds the families; the real run's set-up then sets s₀ = s₀₀ − α s.
 //  - short-range contact (15 c/δ)(r − d) with d = min(0.9|ξ|, 1.35 lc) acts on
 //    every pair closer than d, bonded or not, always: pdmpm matches it with
 //    [model.contact] bonded_pairs = true (defaults otherwise).
@@ -30,6 +35,7 @@
 #include <array>
 #include <cstdint>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -70,6 +76,10 @@ struct Result {
   std::vector<Frame> frames;
   double loop_seconds = 0.0;  // LAMMPS' own "Loop time" (the time steps only)
   double wall_seconds = 0.0;  // the whole lmp process, set-up included
+  // The log's "MPI task timing breakdown": average seconds per section (Pair, Neigh,
+  // Comm, Output, Modify, Other) of the time-step loop. Pair is the force computation.
+  std::map<std::string, double> sections;
+  double memory_mbytes = 0.0;  // "Per MPI rank memory allocation" (LAMMPS' own estimate, max)
   std::int64_t bonds = 0;     // "total # of bonds" LAMMPS reports (bond sides)
   std::string version;        // from the log's first line, e.g. "7 Jan 2022"
   std::string log;            // log.pdmpm
@@ -81,6 +91,9 @@ Result run(const io::Scene& scene, const sim::PdSetup<3>& setup, const Options& 
 
 // Reads a LAMMPS text dump with columns id x y z vx vy vz c_damage (any order).
 std::vector<Frame> read_dump(const std::filesystem::path& path, std::size_t particles);
+
+// Average seconds per section of the last "MPI task timing breakdown" in a log.
+std::map<std::string, double> timing_breakdown(const std::string& log);
 
 // Broken bond sides implied by a damage field when all volumes are equal:
 // φ_i = (broken sides of i)/(family size of i), so Σ φ_i n_i (rounded).

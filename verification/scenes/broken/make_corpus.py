@@ -48,6 +48,15 @@ def replace(old, new):
     return BASE.replace(old, new, 1)
 
 
+# The same body as an MPM scene (model type "mpm": no horizon, bonds or critical stretch).
+MPM_BASE = replace('type = "lps"\ninfluence = "constant"', 'type = "mpm"').replace("critical_stretch = 0.002\n", "").replace("horizon_ratio = 3.015\n", "")
+
+
+def mpm(old, new):
+    assert old in MPM_BASE, old
+    return MPM_BASE.replace(old, new, 1)
+
+
 CASES = {
     "unknown_top_key": ("foo | unknown key", BASE + "\n[foo]\nbar = 1\n"),
     "unknown_material_key": ("material.youngs_modulu | unknown key", replace("density = 2500", "density = 2500\nyoungs_modulu = 1")),
@@ -107,6 +116,20 @@ CASES = {
     "unknown_indenter_law": ("indenter.law | force_density", BASE + '\n[indenter]\nradius = 0.002\ncenter = [0.01, 0.012]\nvelocity = [0.0, -10.0]\nstiffness = 1e17\nlaw = "pressure"\n'),
     "frame_times_and_frames": ("output.frame_times | at most one of frames, every and frame_times", BASE + "\n[output]\nframes = 3\nframe_times = [1e-7]\n"),
     "negative_frame_time": ("output.frame_times | must be ≥ 0", BASE + "\n[output]\nframe_times = [-1e-7]\n"),
+    "weighted_volume_for_pmb": ("model.weighted_volume | only for type = \"lps\"", replace('type = "lps"', 'type = "pmb"').replace('influence = "constant"', 'influence = "constant"\nweighted_volume = "continuum"').replace("poissons_ratio = 0.25\n", "")),
+    "unknown_weighted_volume": ("model.weighted_volume | must be \"discrete\"", replace('influence = "constant"', 'influence = "constant"\nweighted_volume = "integral"')),
+    "mpm_precrack": ("precrack[0] | pre-cracks cut PD bonds", MPM_BASE + "\n[[precrack]]\nfrom = [0.0, 0.005]\nto = [0.005, 0.005]\n"),
+    "mpm_displacement_boundary": ("boundary[0].kind | constrains grid velocities", mpm('kind = "fixed"', 'kind = "displacement"\nvalue = ["0", "0"]')),
+    "mpm_disk_region": ("boundary[0].region | as boxes", mpm('region = { type = "box", min = [0.0, 0.0], max = [0.001, 0.01] }', 'region = { type = "disk", center = [0.0, 0.0], radius = 0.002 }')),
+    "mpm_region_without_nodes": ("boundary[0].region | contains no grid node", mpm("min = [0.0, 0.0], max = [0.001, 0.01]", "min = [0.0005, 0.0], max = [0.0015, 0.01]")),
+    "mpm_symmetry_cuts_body": ("symmetry[0].position | cuts the body", MPM_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.01\n'),
+    "mpm_critical_stretch": ("material.critical_stretch | only for the peridynamic models", mpm("density = 2500", "density = 2500\ncritical_stretch = 0.01")),
+    "mpm_yield_without_j2": ("material.yield_stress | only for constitutive", mpm("density = 2500", "density = 2500\nyield_stress = 1e8")),
+    "mpm_failure_without_j2": ("material.failure | needs constitutive", MPM_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
+    "mpm_unknown_shape_function": ("mpm.shape_function | cubic", MPM_BASE + '\n[mpm]\nshape_function = "cubic"\n'),
+    "mpm_cfl_above_one": ("time.safety_factor | CFL number", mpm("end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 1.5")),
+    "mpm_influence": ("model.influence | only for the peridynamic models", mpm('type = "mpm"', 'type = "mpm"\ninfluence = "constant"')),
+    "mpm_table_for_pd": ("mpm | only for model type", BASE + '\n[mpm]\nshape_function = "gimp"\n'),
 }
 
 

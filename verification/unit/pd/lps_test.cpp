@@ -8,6 +8,16 @@
 namespace pdmpm::pd {
 namespace {
 
+// The same smooth, non-affine displacement field in two systems on one lattice.
+void set_smooth_non_affine_field(System<3>& a, System<3>& b) {
+  for (Index i = 0; i < a.n_real(); ++i) {
+    const Vec<3> x = a.particles.x0[i];
+    const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
+    a.particles.u[i] = u;
+    b.particles.u[i] = u;
+  }
+}
+
 // Seed 001 §5 (after [3]): with ω = 1/|ξ| and ν = 1/4, LPS coincides with PMB
 // (constant micromodulus) away from boundaries: A = 3K − 5G = 0 leaves the pair
 // force 2·15G (δ/|ξ|) e / m, which is PMB's c e/|ξ| with c = 30Gδ/m = 12E/(πδ⁴).
@@ -25,12 +35,7 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
   lps.initialise(lps_sys);
   Pmb<3> pmb;
   pmb.initialise(pmb_sys);
-  for (Index i = 0; i < lps_sys.n_real(); ++i) {
-    const Vec<3> x = lps_sys.particles.x0[i];
-    const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
-    lps_sys.particles.u[i] = u;
-    pmb_sys.particles.u[i] = u;
-  }
+  set_smooth_non_affine_field(lps_sys, pmb_sys);
   lps.compute_forces(lps_sys, {});
   pmb.compute_forces(pmb_sys, {});
   // PMB's c uses the continuum m, LPS the discrete one: compare up to m_discrete/m_∞.
@@ -46,6 +51,35 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
   const Vec<3> f_lps = lps_sys.particles.f[centre] * (m_discrete / m_cont);
   const Vec<3> f_pmb = pmb_sys.particles.f[centre];
   EXPECT_NEAR((f_lps - f_pmb).norm() / f_pmb.norm(), 0.0, 1e-12);
+}
+
+// With the continuum weighted volume (seed 004 eq 15) every particle has the same m,
+// so at ν = 1/4 and ω = 1/|ξ| the LPS pair force B ω e (1/m_i + 1/m_j) is PMB's
+// c e/|ξ| at every particle, boundary ones included.
+TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {
+  test::BlockSpec spec;
+  spec.sites = 9;
+  spec.influence = Influence::inverse_distance;
+  spec.material.nu = 0.25;
+  auto lps_sys = test::make_block<3>(spec);
+  lps_sys.continuum_weighted_volume = true;
+  spec.influence = Influence::constant;
+  auto pmb_sys = test::make_block<3>(spec);
+  Lps<3> lps;
+  lps.initialise(lps_sys);
+  Pmb<3> pmb;
+  pmb.initialise(pmb_sys);
+  const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
+  double worst = 0.0, scale = 0.0;
+  for (Index i = 0; i < lps_sys.n_real(); ++i) EXPECT_EQ(lps.weighted_volume()[i], m_cont);
+  set_smooth_non_affine_field(lps_sys, pmb_sys);
+  lps.compute_forces(lps_sys, {});
+  pmb.compute_forces(pmb_sys, {});
+  for (Index i = 0; i < lps_sys.n_real(); ++i) {
+    worst = std::max(worst, (lps_sys.particles.f[i] - pmb_sys.particles.f[i]).norm());
+    scale = std::max(scale, pmb_sys.particles.f[i].norm());
+  }
+  EXPECT_LT(worst, 1e-12 * scale);  // round-off: the same pair sums in another association
 }
 
 TEST(Lps, RigidRotationGivesZeroForce) {

@@ -1,0 +1,18 @@
+// main() of pdmpm_bench: Google Benchmark's, plus the build's provenance in the
+// JSON "context" (compiler, flags, git commit, SIMD level), which the report shows
+// next to the CPU that Google Benchmark records itself.
+#include <benchmark/benchmark.h>
+
+#include "solver/pd/kernels/bond_kernels.hpp"
+
+int main(int argc, char** argv) {
+  benchmark::AddCustomContext("pdmpm_compiler", PDMPM_COMPILER);
+  benchmark::AddCustomContext("pdmpm_flags", PDMPM_FLAGS);
+  benchmark::AddCustomContext("pdmpm_git_sha", PDMPM_GIT_SHA);
+  benchmark::AddCustomContext("pdmpm_simd", pdmpm::pd::kernels::simd_level());
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,305 @@
+#include "solver/sim/mpm_run.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "solver/core/error.hpp"
+#include "solver/io/fields_writer.hpp"
+#include "solver/io/history_writer.hpp"
+#include "solver/io/output_directory.hpp"
+#include "solver/io/progress.hpp"
+#include "solver/mpm/simulation.hpp"
+#include "solver/sim/output_schedule.hpp"
+#include "solver/sim/run_metrics.hpp"
+
+namespace pdmpm::sim {
+namespace {
+
+template <int D>
+class MpmRun {
+ public:
+  MpmRun(const io::Scene& scene, MpmSetup<D>& setup, const RunOptions& options)
+      : scene_(scene), s_(setup), p_(setup.particles), opt_(options), sim_(setup.settings, setup.particles, scene.file, "mpm") {
+    check_boundary_nodes();
+  }
+
+  RunResult run();
+
+ private:
+  void check_boundary_nodes() const;
+  void choose_time_step();
+  void start_outputs();
+  void history_row(std::int64_t step, double t);
+  void frame(std::int64_t step, double t);
+  bool stable(std::int64_t step, double t);
+  nlohmann::json summary(double wall) const;
+
+  const io::Scene& scene_;
+  MpmSetup<D>& s_;
+  core::Particles<D>& p_;
+  RunOptions opt_;
+  mpm::Simulation<D> sim_;
+
+  double dt_ = 0.0, dt_cfl0_ = 0.0, end_time_ = 0.0, balance0_ = 0.0;
+  std::int64_t total_steps_ = 0, steps_done_ = 0, history_every_ = 1, failed_ = 0;
+  std::vector<std::int64_t> frames_;
+  std::size_t next_frame_ = 0;
+  std::string status_ = "completed", message_;
+
+  std::unique_ptr<io::OutputDirectory> out_;
+  std::unique_ptr<io::HistoryWriter> history_;
+  std::unique_ptr<io::FieldsWriter> fields_;
+  std::unique_ptr<io::Progress> progress_;
+};
+
+// Each fixed/velocity region must hold a grid node, or the condition does nothing.
+template <int D>
+void MpmRun<D>::check_boundary_nodes() const {
+  for (std::size_t b = 0; b < s_.grid_bc_source.size(); ++b) {
+    const int src = s_.grid_bc_source[b];
+    if (src >= 0 && sim_.boundary().nodes(b).empty()) {
+      std::ostringstream m;
+      m << "contains no grid node (the mpm model constrains grid nodes; cell size " << sim_.cell_size()
+        << " m, grid lines through the body's lower faces): enlarge the box";
+      throw InputError(scene_.file, scene_.boundaries[static_cast<std::size_t>(src)].key + ".region", m.str());
+    }
+  }
+}
+
+template <int D>
+void MpmRun<D>::choose_time_step() {
+  dt_cfl0_ = sim_.stable_dt();
+  dt_ = scene_.time.dt ? *scene_.time.dt : scene_.time.safety_factor * dt_cfl0_;
+  if (scene_.time.steps) {
+    total_steps_ = *scene_.time.steps;
+  } else {
+    total_steps_ = static_cast<std::int64_t>(std::ceil(*scene_.time.end_time / dt_ * (1.0 - 1e-12)));
+    dt_ = *scene_.time.end_time / static_cast<double>(total_steps_);  // land exactly on end_time
+  }
+  end_time_ = dt_ * static_cast<double>(total_steps_);
+}
+
+template <int D>
+void MpmRun<D>::start_outputs() {
+  out_ = std::make_unique<io::OutputDirectory>(opt_.out_dir);
+  std::vector<std::string> cols{"step",           "time",           "kinetic_energy", "internal_energy",
+                                "plastic_work",   "external_work",  "boundary_work",  "damping_work",
+                                "energy_error"};
+  for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
+  cols.insert(cols.end(), {"failed_particles", "max_eq_plastic_strain", "max_von_mises"});
+  for (const auto& b : scene_.boundaries)
+    if (b.kind != io::BoundaryKind::traction)
+      for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
+  for (const auto& pr : s_.probes)
+    for (const char* q : {"u", "v"})
+      for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
+  history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), cols);
+  if (opt_.write_fields)
+    fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", D);
+  if (opt_.progress) {
+    progress_ = std::make_unique<io::Progress>(std::cerr, io::Progress::stderr_is_terminal(), total_steps_, end_time_, scene_.id);
+    progress_->set_counter_name("failed");
+  }
+}
+
+template <int D>
+void MpmRun<D>::history_row(std::int64_t step, double t) {
+  const auto e = sim_.energies();
+  std::vector<double> row{static_cast<double>(step), t, e.kinetic, e.strain, e.dissipated, e.external_work,
+                          e.boundary_work, e.damping_work, e.balance() - balance0_};
+  const Vec<D> mom = sim_.momentum();
+  for (int a = 0; a < D; ++a) row.push_back(mom[a]);
+  double max_eps = 0.0, max_vm = 0.0;
+  for (Index i = 0; i < p_.n_real; ++i) {
+    max_eps = std::max(max_eps, sim_.eq_plastic_strain(i));
+    max_vm = std::max(max_vm, sim_.von_mises(i));
+  }
+  row.insert(row.end(), {static_cast<double>(failed_), max_eps, max_vm});
+  // Reactions summed per scene boundary (a boundary with several boxes has several grid conditions).
+  for (std::size_t k = 0; k < scene_.boundaries.size(); ++k) {
+    if (scene_.boundaries[k].kind == io::BoundaryKind::traction) continue;
+    Vec<D> r = Vec<D>::Zero();
+    for (std::size_t b = 0; b < s_.grid_bc_source.size(); ++b)
+      if (s_.grid_bc_source[b] == static_cast<int>(k)) r += sim_.reactions()[b];
+    for (int a = 0; a < D; ++a) row.push_back(r[a]);
+  }
+  for (const auto& pr : s_.probes) {
+    for (int a = 0; a < D; ++a) row.push_back(p_.u[pr.particle][a]);
+    for (int a = 0; a < D; ++a) row.push_back(p_.v[pr.particle][a]);
+  }
+  history_->write_row(row);
+}
+
+template <int D>
+void MpmRun<D>::frame(std::int64_t step, double t) {
+  if (!fields_) return;
+  const Index n = p_.n_real;
+  auto wants = [&](const char* name) {
+    return std::find(scene_.output.fields.begin(), scene_.output.fields.end(), name) != scene_.output.fields.end();
+  };
+  auto vec3 = [&](auto&& value) {
+    std::vector<double> out(static_cast<std::size_t>(n) * 3, 0.0);
+    for (Index i = 0; i < n; ++i) {
+      const Vec<D> v = value(i);
+      for (int a = 0; a < D; ++a) out[3 * i + a] = v[a];
+    }
+    return out;
+  };
+  auto scalar = [&](auto&& value) {
+    std::vector<double> out(static_cast<std::size_t>(n));
+    for (Index i = 0; i < n; ++i) out[i] = value(i);
+    return out;
+  };
+  std::vector<io::Field> fields;
+  if (wants("displacement")) fields.push_back({"displacement", io::FieldKind::vector, vec3([&](Index i) { return p_.u[i]; })});
+  if (wants("velocity")) fields.push_back({"velocity", io::FieldKind::vector, vec3([&](Index i) { return p_.v[i]; })});
+  if (wants("stress")) {
+    std::vector<double> flat(static_cast<std::size_t>(n) * 6);
+    for (Index i = 0; i < n; ++i) {
+      const Mat<3>& s = sim_.state().stress[i];
+      const double c[6] = {s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(1, 2), s(0, 2)};  // xx yy zz xy yz xz
+      std::copy(c, c + 6, flat.begin() + 6 * i);
+    }
+    fields.push_back({"stress", io::FieldKind::tensor6, flat});
+  }
+  if (wants("von_mises")) fields.push_back({"von_mises", io::FieldKind::scalar, scalar([&](Index i) { return sim_.von_mises(i); })});
+  if (wants("triaxiality"))
+    fields.push_back({"triaxiality", io::FieldKind::scalar, scalar([&](Index i) { return sim_.triaxiality(i); })});
+  if (wants("eq_plastic_strain"))
+    fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, scalar([&](Index i) { return sim_.eq_plastic_strain(i); })});
+  if (wants("failed"))
+    fields.push_back({"failed", io::FieldKind::scalar, scalar([&](Index i) { return sim_.failed(i) ? 1.0 : 0.0; })});
+  fields_->write_frame(step, t, vec3([&](Index i) { return p_.position(i); }), fields);
+}
+
+// Unstable: non-finite energies, the stored + kinetic energy far above what the
+// loads put in, or particles so fast that the fixed step exceeds the CFL limit.
+template <int D>
+bool MpmRun<D>::stable(std::int64_t step, double t) {
+  const auto e = sim_.energies();
+  const double stored = e.kinetic + e.strain;
+  const double input = std::abs(e.external_work) + std::abs(e.boundary_work) + std::abs(balance0_);
+  const double allowed = scene_.time.energy_growth_limit * input + 1e-200;
+  std::ostringstream m;
+  if (!std::isfinite(stored) || stored > allowed) {
+    m << "unstable at step " << step << " (t = " << t << " s): kinetic + stored energy " << stored << " J exceeds "
+      << scene_.time.energy_growth_limit << " × (work done on the body) = " << allowed << " J; time step " << dt_
+      << " s, CFL step at t = 0 " << dt_cfl0_ << " s";
+  } else if (const double cfl = sim_.stable_dt(); dt_ > cfl) {
+    m << "unstable at step " << step << " (t = " << t << " s): particles moved so fast that the step " << dt_
+      << " s exceeds the CFL limit h / max(c + |v|) = " << cfl << " s; lower time.safety_factor or time.dt";
+  } else {
+    return true;
+  }
+  status_ = "unstable";
+  message_ = m.str();
+  return false;
+}
+
+template <int D>
+nlohmann::json MpmRun<D>::summary(double wall) const {
+  const auto e = sim_.energies();
+  double umax = 0.0, max_eps = 0.0, max_vm = 0.0;
+  for (Index i = 0; i < p_.n_real; ++i) {
+    umax = std::max(umax, p_.u[i].norm());
+    max_eps = std::max(max_eps, sim_.eq_plastic_strain(i));
+    max_vm = std::max(max_vm, sim_.von_mises(i));
+  }
+  const auto& st = s_.settings;
+  return {{"scene", scene_.id},
+          {"file", scene_.file},
+          {"description", scene_.description},
+          {"status", status_},
+          {"message", message_},
+          {"solver", "mpm"},
+          {"model", "mpm"},
+          {"constitutive", std::string(mpm::name(st.material.model))},
+          {"shape_function", std::string(mpm::name(st.shape))},
+          {"update_scheme", std::string(mpm::name(st.scheme))},
+          {"dimension", D},
+          {"setting", std::string(mpm::name(st.setting))},
+          {"spacing", scene_.spacing},
+          {"cell_size", sim_.cell_size()},
+          {"particles", p_.n_real},
+          {"grid_nodes", sim_.grid().size()},
+          {"steps", steps_done_},
+          {"steps_requested", total_steps_},
+          {"dt", dt_},
+          {"dt_estimate", {{"cfl_step_at_start", dt_cfl0_}}},
+          {"end_time", dt_ * static_cast<double>(steps_done_)},
+          {"threads", omp_get_max_threads()},
+          {"wall_time_s", wall},
+          {"peak_memory_bytes", peak_memory_bytes()},
+          {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
+          {"metrics",
+           {{"failed_particles", failed_},
+            {"max_eq_plastic_strain", max_eps},
+            {"max_von_mises", max_vm},
+            {"max_displacement", umax},
+            {"kinetic_energy", e.kinetic},
+            {"internal_energy", e.strain},
+            {"plastic_work", e.dissipated},
+            {"external_work", e.external_work},
+            {"boundary_work", e.boundary_work},
+            {"damping_work", e.damping_work},
+            {"energy_error", e.balance() - balance0_},
+            {"total_mass", sim_.total_mass()}}},
+          {"provenance", {{"git_sha", PDMPM_GIT_SHA}, {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS}}}};
+}
+
+template <int D>
+RunResult MpmRun<D>::run() {
+  const auto t0 = std::chrono::steady_clock::now();
+  choose_time_step();
+  history_every_ = history_interval(scene_.output, total_steps_);
+  const std::int64_t check_every = std::min<std::int64_t>(history_every_, 10);
+  frames_ = frame_steps(scene_.output, total_steps_, dt_);
+  start_outputs();
+  balance0_ = sim_.energies().balance();
+  for (std::int64_t step = 0; step <= total_steps_; ++step) {
+    if (step > 0) {
+      sim_.step(dt_);
+      steps_done_ = step;
+      failed_ += static_cast<std::int64_t>(sim_.newly_failed().size());
+    }
+    const double t = dt_ * static_cast<double>(step);
+    const bool last = step == total_steps_;
+    if (step > 0 && (step % check_every == 0 || last) && !stable(step, t)) {
+      history_row(step, t);
+      frame(step, t);
+      break;
+    }
+    if (step % history_every_ == 0 || last) history_row(step, t);
+    if (next_frame_ < frames_.size() && frames_[next_frame_] == step) {
+      frame(step, t);
+      ++next_frame_;
+    }
+    if (progress_ && step > 0) progress_->update(step, t, failed_);
+  }
+  if (progress_) progress_->finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_);
+  if (fields_) fields_->close();
+  history_.reset();
+
+  return commit_run(*out_, status_, message_, summary(seconds_since(t0)));
+}
+
+}  // namespace
+
+template <int D>
+RunResult run_mpm(const io::Scene& scene, MpmSetup<D>& setup, const RunOptions& options) {
+  MpmRun<D> run(scene, setup, options);
+  return run.run();
+}
+
+template RunResult run_mpm<1>(const io::Scene&, MpmSetup<1>&, const RunOptions&);
+template RunResult run_mpm<2>(const io::Scene&, MpmSetup<2>&, const RunOptions&);
+template RunResult run_mpm<3>(const io::Scene&, MpmSetup<3>&, const RunOptions&);
+
+}  // namespace pdmpm::sim

@@ -1,0 +1,162 @@
+#include "solver/sim/mpm_setup.hpp"
+
+#include <cmath>
+#include <memory>
+
+#include "solver/bc/expression.hpp"
+#include "solver/core/error.hpp"
+#include "solver/core/particle_builder.hpp"
+#include "solver/sim/geometry_from_scene.hpp"
+
+namespace pdmpm::sim {
+namespace {
+
+mpm::Setting mpm_setting(pd::Setting s) {
+  switch (s) {
+    case pd::Setting::bar1d: return mpm::Setting::bar1d;
+    case pd::Setting::plane_stress: return mpm::Setting::plane_stress;
+    case pd::Setting::plane_strain: return mpm::Setting::plane_strain;
+    default: return mpm::Setting::solid3d;
+  }
+}
+
+template <int D>
+bc::ExpressionVariables variables(const Vec<D>& x, double t) {
+  bc::ExpressionVariables v;
+  v.t = t;
+  v.x = x[0];
+  if constexpr (D > 1) v.y = x[1];
+  if constexpr (D > 2) v.z = x[2];
+  return v;
+}
+
+// Per component: the expression, or nothing for "free".
+template <int D>
+std::vector<std::shared_ptr<bc::Expression>> parse_components(const io::BoundarySpec& b) {
+  std::vector<std::shared_ptr<bc::Expression>> e(D);
+  for (int a = 0; a < D; ++a)
+    if (b.value[a] != "free") e[a] = std::make_shared<bc::Expression>(bc::Expression::parse(b.value[a]));
+  return e;
+}
+
+template <int D>
+void add_boundary(const io::Scene& s, std::size_t index, MpmSetup<D>& out) {
+  const io::BoundarySpec& b = s.boundaries[index];
+  if (b.kind == io::BoundaryKind::traction) {
+    const auto value = parse_components<D>(b);
+    for (int a = 0; a < D; ++a)
+      if (!value[a]) throw InputError(s.file, b.key + ".value", "a traction component cannot be \"free\" (use 0)");
+    // The scene's traction acts on a layer of thickness `layer` (force density t/layer);
+    // mpm::Traction spreads t over a layer of one spacing, so scale by Δx/layer.
+    const double scale = b.layer > 0.0 ? s.spacing / b.layer : 1.0;
+    for (const auto& r : b.region) {
+      mpm::Traction<D> t;
+      t.name = b.name;
+      t.min = to_vec<D>(r.min);
+      t.max = to_vec<D>(r.max);
+      t.traction_field = [value, scale](const Vec<D>& X, double time) {
+        Vec<D> traction;
+        for (int a = 0; a < D; ++a) traction[a] = scale * (*value[a])(variables<D>(X, time));
+        return traction;
+      };
+      out.settings.tractions.push_back(std::move(t));
+    }
+    return;
+  }
+  for (const auto& r : b.region) {
+    mpm::GridBc<D> g;
+    g.name = b.name;
+    g.min = to_vec<D>(r.min);
+    g.max = to_vec<D>(r.max);
+    if (b.kind == io::BoundaryKind::fixed) {
+      g.kind = mpm::BcKind::fixed;
+    } else {
+      g.kind = mpm::BcKind::velocity;
+      const auto value = parse_components<D>(b);
+      for (int a = 0; a < D; ++a) g.components[a] = value[a] != nullptr;
+      g.velocity_field = [value](const Vec<D>& x, double time) {
+        Vec<D> v = Vec<D>::Zero();
+        for (int a = 0; a < D; ++a)
+          if (value[a]) v[a] = (*value[a])(variables<D>(x, time));
+        return v;
+      };
+    }
+    out.settings.boundaries.push_back(std::move(g));
+    out.grid_bc_source.push_back(static_cast<int>(index));
+  }
+}
+
+}  // namespace
+
+template <int D>
+MpmSetup<D> build_mpm(const io::Scene& s) {
+  const io::MpmSpec& m = *s.mpm;
+  MpmSetup<D> out;
+  const auto geometry = make_geometry<D>(s.shapes);
+  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
+  out.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
+  if (out.particles.n_real == 0)
+    throw InputError(s.file, "shape", "the shapes contain no lattice site: check their extents against discretization.spacing");
+  for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
+
+  auto& st = out.settings;
+  st.setting = mpm_setting(s.setting);
+  st.material.model = m.constitutive;
+  st.material.E = s.material.E;
+  st.material.nu = s.material.nu;
+  st.material.rho = s.material.rho;
+  st.material.yield_stress = m.yield_stress;
+  st.material.tangent_modulus = m.tangent_modulus;
+  st.shape = m.shape;
+  st.gimp_domain = m.gimp_domain;
+  st.scheme = m.scheme;
+  st.flip = m.flip;
+  st.cell_size = m.cell_size;
+  st.cell_factor = m.cell_factor;
+  st.padding_cells = m.padding_cells;
+  st.damping_viscous = m.damping_viscous;
+  st.damping_local = m.damping_local;
+  st.nonlocal = m.nonlocal;
+  st.failure = m.failure;
+  st.dt = s.time.dt.value_or(0.0);
+  st.cfl = s.time.safety_factor;
+
+  // Grid lines through the body's lower faces (particles sit symmetrically in the
+  // cells), and through every symmetry plane.
+  const auto bounds = geometry.bounds();
+  st.origin = bounds.min;
+  for (const auto& sym : s.symmetries) {
+    mpm::GridBc<D> g;
+    g.name = "symmetry_" + std::string(1, "xyz"[sym.axis]);
+    g.kind = mpm::BcKind::symmetry;
+    g.axis = sym.axis;
+    g.position = sym.position;
+    const double tol = 1e-9 * s.spacing;
+    if (bounds.min[sym.axis] >= sym.position - tol) g.side = +1;
+    else if (bounds.max[sym.axis] <= sym.position + tol) g.side = -1;
+    else throw InputError(s.file, sym.key + ".position", "the symmetry plane cuts the body: it must lie on a face of the body");
+    st.origin[sym.axis] = sym.position;
+    st.boundaries.push_back(std::move(g));
+    out.grid_bc_source.push_back(-1);
+  }
+  for (std::size_t k = 0; k < s.boundaries.size(); ++k) add_boundary<D>(s, k, out);
+
+  if (!s.body_force.empty()) {
+    std::vector<bc::Expression> b;
+    for (int a = 0; a < D; ++a) b.push_back(bc::Expression::parse(s.body_force[a]));
+    const double rho = s.material.rho;
+    st.body_acceleration = [b, rho](const Vec<D>& X, double t) {
+      Vec<D> acc;
+      for (int a = 0; a < D; ++a) acc[a] = b[a](variables<D>(X, t)) / rho;
+      return acc;
+    };
+  }
+  out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
+  return out;
+}
+
+template MpmSetup<1> build_mpm<1>(const io::Scene&);
+template MpmSetup<2> build_mpm<2>(const io::Scene&);
+template MpmSetup<3> build_mpm<3>(const io::Scene&);
+
+}  // namespace pdmpm::sim
