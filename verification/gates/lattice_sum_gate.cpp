@@ -37,6 +37,7 @@
 #include "solver/pd/bond_table.hpp"
 #include "solver/pd/constants.hpp"
 #include "solver/pd/weighted_volume.hpp"
+#include "verification/support/convergence_fit.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/pd_fixtures.hpp"
 
@@ -125,15 +126,11 @@ std::vector<double> envelope(const Scan& sc, const std::vector<double>& err) {
   return env;
 }
 
-// Least-squares order p of env ≈ C m^−p over the window midpoints.
+// Least-squares order p of env ≈ C m^−p over the window midpoints m = 2.5, 3.5, ….
 double fitted_order(const std::vector<double>& env) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(env.size());
-  for (std::size_t k = 0; k < env.size(); ++k) {
-    const double x = std::log(2.5 + static_cast<double>(k)), y = std::log(env[k]);
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return -(n * sxy - sx * sy) / (n * sxx - sx * sx);
+  std::vector<double> mid;
+  for (std::size_t k = 0; k < env.size(); ++k) mid.push_back(2.5 + static_cast<double>(k));
+  return -test::fitted_order(mid, env);
 }
 
 double max_step_ratio(const std::vector<double>& env) {

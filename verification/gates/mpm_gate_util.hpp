@@ -10,6 +10,7 @@
 
 #include "solver/core/particle_builder.hpp"
 #include "solver/core/shapes.hpp"
+#include "verification/support/convergence_fit.hpp"
 
 namespace pdmpm::test::mpm_util {
 
@@ -28,19 +29,8 @@ core::Particles<D> box_particles(const Vec<D>& lo, const Vec<D>& hi, double dx, 
   return p;
 }
 
-// Least-squares slope of log(err) against log(h): the observed order.
-inline double fitted_order(const std::vector<double>& h, const std::vector<double>& err) {
-  const double n = static_cast<double>(h.size());
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(err[i]);
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
-}
+// The observed order (least-squares slope of log(err) against log(h)).
+using test::fitted_order;
 
 inline bool monotone_decreasing(const std::vector<double>& v) {
   for (std::size_t i = 1; i < v.size(); ++i)

@@ -8,6 +8,9 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <string>
+
+#include <unistd.h>
 
 #include "verification/support/provenance.hpp"
 
@@ -26,10 +29,13 @@ const char* compare_name(Compare c) {
   return "?";
 }
 
-// Write via a temporary name and rename, so a reader never sees half a file.
+// Write via a temporary name and rename, so a reader never sees half a file. The
+// temporary name carries the process id: ctest runs tests side by side, and every
+// test process writes provenance.json (one shared name let one process rename the
+// other's file away, failing its test).
 void write_json(const fs::path& path, const nlohmann::json& j) {
   fs::create_directories(path.parent_path());
-  const fs::path tmp = path.string() + ".tmp";
+  const fs::path tmp = path.string() + "." + std::to_string(::getpid()) + ".tmp";
   {
     std::ofstream out(tmp);
     out << j.dump(2) << '\n';

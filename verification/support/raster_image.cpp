@@ -130,6 +130,15 @@ Rgb damage_colour(double v) {
   return {128, 0, 0};
 }
 
+Rgb viridis(double v) {
+  static const double anchors[5][3] = {{68, 1, 84}, {59, 82, 139}, {33, 145, 140}, {94, 201, 98}, {253, 231, 37}};
+  const double x = 4.0 * std::clamp(v, 0.0, 1.0);
+  const int k = std::min(3, static_cast<int>(x));
+  const double w = x - k;
+  auto mix = [&](int c) { return channel((anchors[k][c] + w * (anchors[k + 1][c] - anchors[k][c])) / 255.0); };
+  return {mix(0), mix(1), mix(2)};
+}
+
 Raster::Raster(int width, int height, Rgb background)
     : w_(width), h_(height), px_(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), background) {
   if (width <= 0 || height <= 0) throw std::invalid_argument("Raster: empty image");

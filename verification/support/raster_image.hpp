@@ -1,9 +1,8 @@
 #pragma once
 // Small RGB rasters written as PNG without any image library (a fixed-Huffman
-// deflate block with run matches; CRC-32 and Adler-32 by hand), for damage maps
-// in the report: the
-// particles of a lattice drawn as square cells coloured by a value, with crack
-// paths drawn over them.
+// deflate block with run matches; CRC-32 and Adler-32 by hand), for the report's
+// pictures: damage maps (the particles of a lattice drawn as square cells
+// coloured by a value, with crack paths drawn over them) and schlieren panels.
 #include <array>
 #include <cstdint>
 #include <string>
@@ -17,6 +16,10 @@ struct Rgb {
 
 // Blue (0) → cyan → yellow → red (1), clamped: a jet-like scale for damage φ.
 Rgb damage_colour(double v);
+
+// Perceptually ordered scale for v in [0, 1], clamped (five anchors of
+// matplotlib's viridis, linearly interpolated): for smooth fields such as |v|.
+Rgb viridis(double v);
 
 class Raster {
  public:
