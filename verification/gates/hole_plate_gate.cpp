@@ -122,19 +122,9 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
                      {"rows", rows},
                      {"caption", "Run at the paper's resolution and Δt, continued to 2400 steps. Times are history samples "
                                  "(every 5 steps = 0.067 µs). The paper's 1200 steps end at 16.04 µs."}});
-  json crow = json::array();
-  for (const auto& c : crack.at("cracks"))
-    if (c.at("members").get<double>() >= 5)
-      crow.push_back({c.at("origin")[0], c.at("origin")[1], c.at("start_time"), c.at("tip")[0], c.at("tip")[1],
-                      c.at("angle_deg"), c.at("max_speed"), cR});
-  test::record_data(problem, "02_cracks",
-                    {{"kind", "table"},
-                     {"title", "Cracks (≥ 5 cracked particles) at the end of the run"},
-                     {"columns", {"origin x [m]", "origin y [m]", "start [s]", "tip x [m]", "tip y [m]", "angle [°]",
-                                  "max speed [m/s]", "Rayleigh speed [m/s]"}},
-                     {"rows", crow},
-                     {"caption", "Angle: chord origin → tip from the x axis (the load axis). Overall principal-axis angle of all "
-                                 "cracked particles: " + std::to_string(crack.at("overall_angle_deg").get<double>()) + "°."}});
+  test::record_crack_table(problem, crack, cR,
+                           "Angle: chord origin → tip from the x axis (the load axis). Overall principal-axis angle of all "
+                               "cracked particles: " + std::to_string(crack.at("overall_angle_deg").get<double>()) + "°.");
   json series = json::array();
   for (const auto& c : main_cracks)
     series.push_back({{"label", "crack from (" + std::to_string(c.at("origin")[0].get<double>() * 1e3).substr(0, 5) + ", " +

@@ -87,18 +87,8 @@ TEST(FullInclinedCrack, CracksAgainstSeed004) {
                      {"rows", rows},
                      {"caption", "Times in seconds unless marked. Run at the paper's resolution and Δt, continued to 2000 "
                                  "steps; times are history samples (every 5 steps = 0.067 µs)."}});
-  json crow = json::array();
-  for (const auto& c : crack.at("cracks"))
-    if (c.at("members").get<double>() >= 5)
-      crow.push_back({c.at("origin")[0], c.at("origin")[1], c.at("start_time"), c.at("tip")[0], c.at("tip")[1],
-                      c.at("angle_deg"), c.at("max_speed"), cR});
-  test::record_data(problem, "02_cracks",
-                    {{"kind", "table"},
-                     {"title", "Cracks (≥ 5 cracked particles) at the end of the run"},
-                     {"columns", {"origin x [m]", "origin y [m]", "start [s]", "tip x [m]", "tip y [m]", "angle [°]",
-                                  "max speed [m/s]", "Rayleigh speed [m/s]"}},
-                     {"rows", crow},
-                     {"caption", "Angle: chord origin → tip from the x axis."}});
+  test::record_crack_table(problem, crack, cR,
+                           "Angle: chord origin → tip from the x axis.");
 
   const auto fields = run.fields();
   for (const auto& [name, moments, title] :

@@ -91,4 +91,20 @@ double mirror_asymmetry(const Frame2d& frame, int axis, double position, double 
   return total > 0.0 ? diff / total : 0.0;
 }
 
+void record_crack_table(const std::string& problem, const nlohmann::json& crack, double rayleigh_speed,
+                        const std::string& caption) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& c : crack.at("cracks"))
+    if (c.at("members").get<double>() >= 5)
+      rows.push_back({c.at("origin")[0], c.at("origin")[1], c.at("start_time"), c.at("tip")[0], c.at("tip")[1],
+                      c.at("angle_deg"), c.at("max_speed"), rayleigh_speed});
+  record_data(problem, "02_cracks",
+              {{"kind", "table"},
+               {"title", "Cracks (≥ 5 cracked particles) at the end of the run"},
+               {"columns", {"origin x [m]", "origin y [m]", "start [s]", "tip x [m]", "tip y [m]", "angle [°]",
+                            "max speed [m/s]", "Rayleigh speed [m/s]"}},
+               {"rows", rows},
+               {"caption", caption}});
+}
+
 }  // namespace pdmpm::test

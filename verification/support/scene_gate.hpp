@@ -45,6 +45,11 @@ Raster damage_with_paths(const Frame2d& frame, const nlohmann::json& crack, doub
 
 // Σ|φ_i − φ_m(i)| / Σ φ_i over the particles whose mirror m(i) (about the line
 // x[axis] = position) is a particle too: 0 for a symmetric damage field.
+// Records the "02_cracks" table of a problem: every crack path with ≥ 5 cracked
+// particles (origin, start, tip, chord angle, max speed) next to the Rayleigh speed.
+void record_crack_table(const std::string& problem, const nlohmann::json& crack, double rayleigh_speed,
+                        const std::string& caption);
+
 double mirror_asymmetry(const Frame2d& frame, int axis, double position, double dx);
 
 }  // namespace pdmpm::test
