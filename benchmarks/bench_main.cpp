@@ -4,11 +4,12 @@
 #include <benchmark/benchmark.h>
 
 #include "solver/pd/kernels/bond_kernels.hpp"
+#include "solver/core/build_info.hpp"
 
 int main(int argc, char** argv) {
-  benchmark::AddCustomContext("pdmpm_compiler", PDMPM_COMPILER);
-  benchmark::AddCustomContext("pdmpm_flags", PDMPM_FLAGS);
-  benchmark::AddCustomContext("pdmpm_git_sha", PDMPM_GIT_SHA);
+  benchmark::AddCustomContext("pdmpm_compiler", pdmpm::build_info::compiler());
+  benchmark::AddCustomContext("pdmpm_flags", pdmpm::build_info::flags());
+  benchmark::AddCustomContext("pdmpm_git_sha", pdmpm::build_info::git_sha());
   benchmark::AddCustomContext("pdmpm_simd", pdmpm::pd::kernels::simd_level());
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -4,11 +4,12 @@
 #include <iostream>
 
 #include "solver/app/commands.hpp"
+#include "solver/core/build_info.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"pdmpm — peridynamics and material point method reference solver"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("pdmpm ") + PDMPM_GIT_SHA);
+  app.set_version_flag("--version", std::string("pdmpm ") + pdmpm::build_info::git_sha());
 
   pdmpm::app::RunArgs run;
   auto* cmd_run = app.add_subcommand("run", "Run a scene: writes fields.h5/.xdmf, history.csv, summary.json in --out");

@@ -18,6 +18,7 @@
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
+#include "solver/core/build_info.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -251,7 +252,7 @@ nlohmann::json MpmRun<D>::summary(double wall) const {
             {"damping_work", e.damping_work},
             {"energy_error", e.balance() - balance0_},
             {"total_mass", sim_.total_mass()}}},
-          {"provenance", {{"git_sha", PDMPM_GIT_SHA}, {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS}}}};
+          {"provenance", {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}};
 }
 
 template <int D>

@@ -24,6 +24,7 @@
 #include "solver/sim/run_metrics.hpp"
 #include "solver/sim/verlet.hpp"
 #include "solver/time/stable_step.hpp"
+#include "solver/core/build_info.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -460,7 +461,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
         {"external_work", work_},
         {"energy_error", ke_ + u_ - e0_ - work_},
         {"critical_stretch", s_.critical_stretch}}},
-      {"provenance", {{"git_sha", PDMPM_GIT_SHA}, {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS}}}};
+      {"provenance", {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}};
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;

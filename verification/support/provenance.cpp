@@ -1,4 +1,5 @@
 #include "verification/support/provenance.hpp"
+#include "solver/core/build_info.hpp"
 
 #include <omp.h>
 
@@ -39,8 +40,8 @@ nlohmann::json provenance() {
   const std::time_t now = std::time(nullptr);
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return {{"git_sha", PDMPM_GIT_SHA}, {"tree", tree_state()},     {"date", date},
-          {"compiler", PDMPM_COMPILER}, {"flags", PDMPM_FLAGS},   {"cpu", cpu_model()},
+  return {{"git_sha", build_info::git_sha()}, {"tree", tree_state()},     {"date", date},
+          {"compiler", build_info::compiler()}, {"flags", build_info::flags()},   {"cpu", cpu_model()},
           {"threads", omp_get_max_threads()}};
 }
 
