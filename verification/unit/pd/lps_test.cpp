@@ -8,14 +8,33 @@
 namespace pdmpm::pd {
 namespace {
 
-// The same smooth, non-affine displacement field in two systems on one lattice.
-void set_smooth_non_affine_field(System<3>& a, System<3>& b) {
-  for (Index i = 0; i < a.n_real(); ++i) {
-    const Vec<3> x = a.particles.x0[i];
+// LPS (ω = 1/|ξ|, ν = 1/4) and PMB (ω = 1) on the same block, both evaluated under
+// the same smooth, non-affine displacement field.
+struct LpsAndPmb {
+  System<3> lps_sys, pmb_sys;
+  Lps<3> lps;
+  Pmb<3> pmb;
+};
+
+LpsAndPmb evaluate_lps_and_pmb(test::BlockSpec spec, bool continuum_weighted_volume) {
+  LpsAndPmb r;
+  spec.material.nu = 0.25;
+  spec.influence = Influence::inverse_distance;
+  r.lps_sys = test::make_block<3>(spec);
+  r.lps_sys.continuum_weighted_volume = continuum_weighted_volume;
+  spec.influence = Influence::constant;
+  r.pmb_sys = test::make_block<3>(spec);
+  r.lps.initialise(r.lps_sys);
+  r.pmb.initialise(r.pmb_sys);
+  for (Index i = 0; i < r.lps_sys.n_real(); ++i) {
+    const Vec<3> x = r.lps_sys.particles.x0[i];
     const Vec<3> u(1e-9 * std::sin(x[1] * 700.0), 2e-9 * std::cos(x[2] * 500.0), 1e-9 * x[0] * x[1] * 1e3);
-    a.particles.u[i] = u;
-    b.particles.u[i] = u;
+    r.lps_sys.particles.u[i] = u;
+    r.pmb_sys.particles.u[i] = u;
   }
+  r.lps.compute_forces(r.lps_sys, {});
+  r.pmb.compute_forces(r.pmb_sys, {});
+  return r;
 }
 
 // Seed 001 §5 (after [3]): with ω = 1/|ξ| and ν = 1/4, LPS coincides with PMB
@@ -25,19 +44,10 @@ void set_smooth_non_affine_field(System<3>& a, System<3>& b) {
 TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
   test::BlockSpec spec;
   spec.sites = 19;
-  spec.influence = Influence::inverse_distance;
   spec.partial_volume = PartialVolume::none;
-  spec.material.nu = 0.25;
-  auto lps_sys = test::make_block<3>(spec);
-  spec.influence = Influence::constant;
-  auto pmb_sys = test::make_block<3>(spec);
-  Lps<3> lps;
-  lps.initialise(lps_sys);
-  Pmb<3> pmb;
-  pmb.initialise(pmb_sys);
-  set_smooth_non_affine_field(lps_sys, pmb_sys);
-  lps.compute_forces(lps_sys, {});
-  pmb.compute_forces(pmb_sys, {});
+  const auto r = evaluate_lps_and_pmb(spec, false);
+  const auto& lps_sys = r.lps_sys;
+  const auto& pmb_sys = r.pmb_sys;
   // PMB's c uses the continuum m, LPS the discrete one: compare up to m_discrete/m_∞.
   const Index centre = [&] {
     Index best = 0;
@@ -46,7 +56,7 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
       if (test::distance_to_boundary(lps_sys, i) > d) d = test::distance_to_boundary(lps_sys, i), best = i;
     return best;
   }();
-  const double m_discrete = lps.weighted_volume()[centre];
+  const double m_discrete = r.lps.weighted_volume()[centre];
   const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
   const Vec<3> f_lps = lps_sys.particles.f[centre] * (m_discrete / m_cont);
   const Vec<3> f_pmb = pmb_sys.particles.f[centre];
@@ -59,22 +69,12 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
 TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {
   test::BlockSpec spec;
   spec.sites = 9;
-  spec.influence = Influence::inverse_distance;
-  spec.material.nu = 0.25;
-  auto lps_sys = test::make_block<3>(spec);
-  lps_sys.continuum_weighted_volume = true;
-  spec.influence = Influence::constant;
-  auto pmb_sys = test::make_block<3>(spec);
-  Lps<3> lps;
-  lps.initialise(lps_sys);
-  Pmb<3> pmb;
-  pmb.initialise(pmb_sys);
+  const auto r = evaluate_lps_and_pmb(spec, true);
+  const auto& lps_sys = r.lps_sys;
+  const auto& pmb_sys = r.pmb_sys;
   const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
+  for (Index i = 0; i < lps_sys.n_real(); ++i) EXPECT_EQ(r.lps.weighted_volume()[i], m_cont);
   double worst = 0.0, scale = 0.0;
-  for (Index i = 0; i < lps_sys.n_real(); ++i) EXPECT_EQ(lps.weighted_volume()[i], m_cont);
-  set_smooth_non_affine_field(lps_sys, pmb_sys);
-  lps.compute_forces(lps_sys, {});
-  pmb.compute_forces(pmb_sys, {});
   for (Index i = 0; i < lps_sys.n_real(); ++i) {
     worst = std::max(worst, (lps_sys.particles.f[i] - pmb_sys.particles.f[i]).norm());
     scale = std::max(scale, pmb_sys.particles.f[i].norm());
