@@ -20,12 +20,14 @@ struct BondTable {
   std::vector<double> beta;
   std::vector<double> weight;  // ω β
   std::vector<double> xi_component[3];  // ξ by component (structure of arrays for the kernels)
+  std::vector<double> rows;             // 4 per offset: ξ, |ξ|, zeros (kernels::BondShapeTable::rows)
 
   kernels::BondShapeTable view() const {
     kernels::BondShapeTable v{};
     for (int a = 0; a < D; ++a) v.xi[a] = xi_component[a].data();
     v.length = length.data();
     v.weight = weight.data();
+    v.rows = rows.data();
     return v;
   }
 
@@ -40,12 +42,14 @@ struct BondTable {
       t.beta.push_back(partial_volume(pv, L, delta, dx));
       t.weight.push_back(t.omega.back() * t.beta.back());
       for (int a = 0; a < D; ++a) t.xi_component[a].push_back(x[a]);
+      for (int a = 0; a < 4; ++a) t.rows.push_back(a < D ? x[a] : a == D ? L : 0.0);
     }
     // Padding for the kernels' whole-block loads (kernels::BondShapeTable).
     for (int pad = 0; pad < kernels::lanes; ++pad) {
       t.length.push_back(0.0);
       t.weight.push_back(0.0);
       for (int a = 0; a < D; ++a) t.xi_component[a].push_back(0.0);
+      for (int a = 0; a < 4; ++a) t.rows.push_back(0.0);
     }
     return t;
   }

@@ -42,6 +42,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.table = sys.table.view();
   a.u = p.u.data()->data();
   a.volume = p.volume.data();
+  a.uniform_volume = sys.uniform_volume();
   a.m = m_.data();
   a.theta = theta_.data();
   a.alpha = alpha_.data();

@@ -26,6 +26,7 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.table = sys.table.view();
   a.u = p.u.data()->data();
   a.volume = p.volume.data();
+  a.uniform_volume = sys.uniform_volume();
   a.f = p.f.data()->data();
   a.energy = req.energy ? req.energy->data() : nullptr;
   a.c = c_;

@@ -1,6 +1,7 @@
 #pragma once
 // Everything a peridynamic force model acts on: particles, families, the bond
 // table and the per-bond broken flags.
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -34,7 +35,14 @@ struct System {
   Index n_real() const { return particles.n_real; }
 
   kernels::FamilyView family_view() {
-    return {families.n_owners(), families.stencil.size(), families.offsets.data(), families.neighbor.data(), families.shape.data(), broken.data()};
+    return {families.n_owners(), particles.size(),        families.stencil.size(), families.offsets.data(),
+            families.neighbor.data(), families.shape.data(), broken.data()};
+  }
+
+  // Whether every particle (ghosts too) has the same volume, as on a lattice body.
+  bool uniform_volume() const {
+    const auto& v = particles.volume;
+    return std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
   }
 
   // Build families and the bond table for the current particles.

@@ -19,17 +19,20 @@ namespace pdmpm::pd::kernels {
 inline constexpr int lanes = 8;
 
 // Per-stencil-offset data, structure of arrays, each padded with `lanes` zeros
-// so a block starting at any stencil row can be loaded whole.
+// so a block starting at any stencil row can be loaded whole; and the same as
+// rows, for blocks whose offsets are scattered.
 struct BondShapeTable {
   const double* xi[3];       // reference bond vector components
   const double* length;      // |ξ|
   const double* weight;      // ω β
+  const double* rows;        // 4 per offset: ξ (D components), |ξ|, zeros; `lanes` zero rows of padding
 };
 
 // Bond arrays (neighbor, shape, broken) are padded with `lanes` entries past the
 // last bond (core::Families, pd::System), so a block may read 8 entries anywhere.
 struct FamilyView {
   Index n_owners;
+  Index n_sites;            // particles a neighbour index may name (real + ghosts): the extent of u
   BondIndex stencil_size;   // a family this long is the whole stencil, in stencil order
   const BondIndex* offsets;
   const Index* neighbor;
@@ -42,6 +45,7 @@ struct PmbArgs {
   BondShapeTable table;
   const double* u;        // displacements, D per particle (real + ghosts)
   const double* volume;   // per particle
+  bool uniform_volume;    // every volume equals volume[0] (lattice bodies): not gathered per bond
   double* f;              // force density out, D per real particle
   double* energy;         // W_i out (nullptr: not computed)
   double c;               // micromodulus
@@ -55,6 +59,7 @@ struct LpsArgs {
   BondShapeTable table;
   const double* u;
   const double* volume;
+  bool uniform_volume;    // as in PmbArgs
   const double* m;        // weighted volume, real + ghosts
   double* theta;          // dilatation, real + ghosts (pass 1 writes real ones)
   const double* alpha;    // A θ / m per particle (pass 2 reads, real + ghosts)

@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "solver/pd/kernels/kernel_set.hpp"
+#include "solver/pd/kernels/lane_gather.hpp"
 #include "solver/pd/kernels/lane_vector.hpp"
 
 namespace pdmpm::pd::kernels::PDMPM_SIMD_NS {
@@ -23,6 +24,33 @@ inline d8 load8(const double* p) {
   return v;
 }
 
+// How a block is gathered, fixed per family so the bond loop has no branch on it:
+// `wide` when no neighbour's u_j is the last row of u (a wide gather reads four
+// doubles per row, see lane_gather.hpp), `uniform_volume` when V_j is one number.
+template <bool Wide, bool UniformVolume>
+struct GatherMode {
+  static constexpr bool wide = Wide, uniform_volume = UniformVolume;
+};
+
+// Calls family(GatherMode<…>{}) for particle i's family [begin, end).
+template <int D, class Family>
+__attribute__((always_inline)) inline void with_gather_mode(const FamilyView& fam, bool uniform_volume,
+                                                            BondIndex begin, BondIndex end, Family&& family) {
+  // D j + 4 ≤ D n_sites: j < n_sites − 1 in 2D/3D, j < n_sites − 3 in 1D.
+  const Index limit = fam.n_sites - (4 - 1) / D;
+  Index j_max = 0;
+  for (BondIndex b = begin; b < end; ++b) j_max = std::max(j_max, fam.neighbor[b]);
+  const bool wide = j_max < limit;
+  if (wide && uniform_volume)
+    family(GatherMode<true, true>{});
+  else if (wide)
+    family(GatherMode<true, false>{});
+  else if (uniform_volume)
+    family(GatherMode<false, true>{});
+  else
+    family(GatherMode<false, false>{});
+}
+
 // One block of up to eight bonds of particle i, gathered into lanes.
 template <int D>
 struct Block {
@@ -33,37 +61,41 @@ struct Block {
   m8 live;    // all ones for an intact bond, 0 for a broken bond or a padding lane
   alignas(32) Index j[lanes];
 
-  // A particle whose family is the whole stencil has its bonds in stencil order,
-  // so ξ, |ξ| and ω β of a block are contiguous rows of the table (padded to a
-  // multiple of 8 lanes). Otherwise they are looked up through each bond's shape.
+  // Families are subsequences of the stencil, in stencil order. Where a block's
+  // offsets are consecutive (always in a whole-stencil family, mostly elsewhere)
+  // ξ, |ξ| and ω β are contiguous rows of the table, loaded whole (the table is
+  // padded to a multiple of 8 lanes); otherwise they are gathered by offset.
   // Lanes past the family's end read the padded tail of the bond arrays and are
   // masked out by `live`.
-  void gather(const FamilyView& fam, const BondShapeTable& T, const double* u, const double* ui, const double* volume,
-              BondIndex begin, BondIndex b0, int count, bool full_family) {
+  // (Forced inline: as a call, the gathered lanes go through memory, ~1.5× slower.)
+  template <class Mode>
+  __attribute__((always_inline)) void gather(Mode, const FamilyView& fam, const BondShapeTable& T, const double* u,
+                                             const double* ui, const double* volume, BondIndex b0, int count) {
     __builtin_memcpy(j, fam.neighbor + b0, sizeof j);
-    if (full_family) {
-      const BondIndex k0 = b0 - begin;
-      for (int d = 0; d < D; ++d) xi[d] = load8(T.xi[d] + k0);
-      L = load8(T.length + k0);
-      wv = load8(T.weight + k0);
+    const std::uint16_t* k = fam.shape + b0;
+    if (k[count - 1] - k[0] == count - 1) {
+      for (int d = 0; d < D; ++d) xi[d] = load8(T.xi[d] + k[0]);
+      L = load8(T.length + k[0]);
+      wv = load8(T.weight + k[0]);
     } else {
-      const std::uint16_t* k = fam.shape + b0;
-      for (int d = 0; d < D; ++d)
-        xi[d] = d8{T.xi[d][k[0]], T.xi[d][k[1]], T.xi[d][k[2]], T.xi[d][k[3]],
-                   T.xi[d][k[4]], T.xi[d][k[5]], T.xi[d][k[6]], T.xi[d][k[7]]};
-      L = d8{T.length[k[0]], T.length[k[1]], T.length[k[2]], T.length[k[3]],
-             T.length[k[4]], T.length[k[5]], T.length[k[6]], T.length[k[7]]};
+      d8 r[D + 1];
+      gather_rows_wide<D + 1, 4>(T.rows, k, r);
+      for (int d = 0; d < D; ++d) xi[d] = r[d];
+      L = r[D];
       wv = d8{T.weight[k[0]], T.weight[k[1]], T.weight[k[2]], T.weight[k[3]],
               T.weight[k[4]], T.weight[k[5]], T.weight[k[6]], T.weight[k[7]]};
     }
-    for (int d = 0; d < D; ++d)
-      eta[d] = d8{u[D * j[0] + d], u[D * j[1] + d], u[D * j[2] + d], u[D * j[3] + d],
-                  u[D * j[4] + d], u[D * j[5] + d], u[D * j[6] + d], u[D * j[7] + d]} - ui[d];
-    wv *= d8{volume[j[0]], volume[j[1]], volume[j[2]], volume[j[3]],
-             volume[j[4]], volume[j[5]], volume[j[6]], volume[j[7]]};
-    const std::uint8_t* br = fam.broken + b0;
-    const m8 flags = {br[0], br[1], br[2], br[3], br[4], br[5], br[6], br[7]};
-    live = (flags == 0) & (lane_ids < count);
+    if constexpr (Mode::wide)
+      gather_rows_wide<D, D>(u, j, eta);
+    else
+      gather_rows_narrow<D, D>(u, j, eta);
+    for (int d = 0; d < D; ++d) eta[d] -= ui[d];
+    if constexpr (Mode::uniform_volume)
+      wv *= volume[0];
+    else
+      wv *= d8{volume[j[0]], volume[j[1]], volume[j[2]], volume[j[3]],
+               volume[j[4]], volume[j[5]], volume[j[6]], volume[j[7]]};
+    live = lanes_zero(fam.broken + b0) & (lane_ids < count);
   }
 };
 
@@ -99,6 +131,7 @@ inline m8 reaches_critical_stretch(const d8& num, const d8& len, const d8& L, do
 
 // Bonds of this block that just broke are marked; returns how many.
 inline std::int64_t mark_broken(const FamilyView& fam, BondIndex b0, int count, m8 breaks) {
+  if (!any(breaks)) return 0;
   std::int64_t n = 0;
   for (int l = 0; l < count; ++l)
     if (breaks[l]) {
@@ -121,22 +154,23 @@ std::int64_t pmb(const PmbArgs& a) {
     Block<D> B;
     const double* ui = a.u + D * i;
     const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    const bool full = end - begin == fam.stencil_size;
-    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
-      const Deformed<D> g = deform<D>(B);
-      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
-      const m8 acts = a.after_force ? B.live : B.live & ~breaks;
-      const d8 cw = c * B.wv;
-      const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
-      for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
-      if constexpr (Energy) {
-        const d8 s = g.num / ((g.len + B.L) * B.L);
-        w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
+    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
+      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
+        const Deformed<D> g = deform<D>(B);
+        const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
+        const m8 acts = a.after_force ? B.live : B.live & ~breaks;
+        const d8 cw = c * B.wv;
+        const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
+        for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
+        if constexpr (Energy) {
+          const d8 s = g.num / ((g.len + B.L) * B.L);
+          w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
+        }
+        newly += mark_broken(fam, b0, count, breaks);
       }
-      newly += mark_broken(fam, b0, count, breaks);
-    }
+    });
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = lane_sum(w);
   }
@@ -155,16 +189,17 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
     Block<D> B;
     const double* ui = a.u + D * i;
     const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    const bool full = end - begin == fam.stencil_size;
-    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
-      const Deformed<D> g = deform<D>(B);
-      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
-      const m8 acts = B.live & ~breaks;
-      acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
-      newly += mark_broken(fam, b0, count, breaks);
-    }
+    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
+      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
+        const Deformed<D> g = deform<D>(B);
+        const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+        const m8 acts = B.live & ~breaks;
+        acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
+        newly += mark_broken(fam, b0, count, breaks);
+      }
+    });
     a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
   }
   return newly;
@@ -187,25 +222,26 @@ std::int64_t lps_forces(const LpsArgs& a) {
     const double* ui = a.u + D * i;
     const double alpha_i = a.alpha[i], beta_i = a.beta[i], theta_i = a.theta[i];
     const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    const bool full = end - begin == fam.stencil_size;
-    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-      B.gather(fam, a.table, a.u, ui, a.volume, begin, b0, count, full);
-      for (int l = 0; l < lanes; ++l) {
-        alpha_j[l] = a.alpha[B.j[l]];
-        beta_j[l] = a.beta[B.j[l]];
+    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
+      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
+        for (int l = 0; l < lanes; ++l) {
+          alpha_j[l] = a.alpha[B.j[l]];
+          beta_j[l] = a.beta[B.j[l]];
+        }
+        const Deformed<D> g = deform<D>(B);
+        const d8 coef = B.wv * (B.L * (alpha_i + alpha_j) * (g.len + B.L) + (beta_i + beta_j) * g.num) /
+                        ((g.len + B.L) * g.len);
+        for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
+        if constexpr (Energy) {
+          const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
+          dev += keep(B.live, B.wv * ed * ed);
+        }
+        // Break-after-force rule: i's side only, which no other particle reads in this pass.
+        newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
       }
-      const Deformed<D> g = deform<D>(B);
-      const d8 coef = B.wv * (B.L * (alpha_i + alpha_j) * (g.len + B.L) + (beta_i + beta_j) * g.num) /
-                      ((g.len + B.L) * g.len);
-      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
-      if constexpr (Energy) {
-        const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
-        dev += keep(B.live, B.wv * ed * ed);
-      }
-      // Break-after-force rule: i's side only, which no other particle reads in this pass.
-      newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
-    }
+    });
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = 0.5 * a.kappa * theta_i * theta_i + 0.5 * beta_i * lane_sum(dev);
   }

@@ -9,7 +9,13 @@
 #include <immintrin.h>
 #pragma GCC diagnostic pop
 
-namespace pdmpm::pd::kernels {
+#ifndef PDMPM_SIMD_NS
+#error "included by a bond_kernels_<isa>.cpp only: its inline functions differ per instruction set"
+#endif
+
+// One namespace per instruction set: an inline function compiled with AVX-512
+// and the same one compiled for SSE2 must not be merged by the linker.
+namespace pdmpm::pd::kernels::PDMPM_SIMD_NS {
 
 typedef double d8 __attribute__((vector_size(64)));
 typedef long long m8 __attribute__((vector_size(64)));  // lane masks: all ones or zero
@@ -45,4 +51,13 @@ inline d8 keep(m8 mask, d8 a) { return reinterpret_cast<d8>(reinterpret_cast<m8>
 
 inline constexpr m8 lane_ids = {0, 1, 2, 3, 4, 5, 6, 7};
 
-}  // namespace pdmpm::pd::kernels
+// Whether any lane of a mask is set.
+inline bool any(m8 mask) {
+#if defined(__AVX512F__)
+  return _mm512_test_epi64_mask(reinterpret_cast<__m512i>(mask), reinterpret_cast<__m512i>(mask)) != 0;
+#else
+  return ((mask[0] | mask[1]) | (mask[2] | mask[3])) | ((mask[4] | mask[5]) | (mask[6] | mask[7]));
+#endif
+}
+
+}  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS

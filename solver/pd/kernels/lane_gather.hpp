@@ -1,0 +1,63 @@
+#pragma once
+// Gathering eight short rows (up to four doubles each, e.g. a displacement or a
+// bond-table row) into lane vectors: out[c][l] = base[S idx[l] + c].
+//
+// With AVX-512 each row is read as one four-double load and the 8 × 4 block is
+// transposed with eight shuffles, instead of building every lane vector from
+// eight scalars (about seven shuffles each). The result is the same bits either
+// way: only data moves.
+#include <cstdint>
+
+#include "solver/pd/kernels/bond_kernels.hpp"
+#include "solver/pd/kernels/lane_vector.hpp"
+
+#ifndef PDMPM_SIMD_NS
+#error "included by a bond_kernels_<isa>.cpp only: its inline functions differ per instruction set"
+#endif
+
+// One namespace per instruction set: an inline function compiled with AVX-512
+// and the same one compiled for SSE2 must not be merged by the linker.
+namespace pdmpm::pd::kernels::PDMPM_SIMD_NS {
+
+// Reads exactly C doubles of each row.
+template <int C, int S, typename I>
+__attribute__((always_inline)) inline void gather_rows_narrow(const double* base, const I* idx, d8 out[C]) {
+  for (int c = 0; c < C; ++c)
+    out[c] = d8{base[S * idx[0] + c], base[S * idx[1] + c], base[S * idx[2] + c], base[S * idx[3] + c],
+                base[S * idx[4] + c], base[S * idx[5] + c], base[S * idx[6] + c], base[S * idx[7] + c]};
+}
+
+// Reads four doubles of each row (with AVX-512): base + S idx[l] + 3 must be
+// readable even when C < 4.
+template <int C, int S, typename I>
+__attribute__((always_inline)) inline void gather_rows_wide(const double* base, const I* idx, d8 out[C]) {
+  static_assert(C >= 1 && C <= 4, "rows of at most four doubles");
+#if defined(__AVX512F__)
+  auto row = [&](int l) { return _mm256_loadu_pd(base + S * idx[l]); };
+  auto pair = [&](int l) {  // rows l and l + 4 in one register: (a₀ a₁ a₂ a₃ | b₀ b₁ b₂ b₃)
+    return _mm512_insertf64x4(_mm512_castpd256_pd512(row(l)), row(l + 4), 1);
+  };
+  const __m512d z0 = pair(0), z1 = pair(1), z2 = pair(2), z3 = pair(3);
+  const __m512d t0 = _mm512_unpacklo_pd(z0, z1), t1 = _mm512_unpackhi_pd(z0, z1);  // columns 0,2 / 1,3 of rows 0,1,4,5
+  const __m512d t2 = _mm512_unpacklo_pd(z2, z3), t3 = _mm512_unpackhi_pd(z2, z3);  // the same of rows 2,3,6,7
+  const __m512i even = _mm512_setr_epi64(0, 1, 8, 9, 4, 5, 12, 13), odd = _mm512_setr_epi64(2, 3, 10, 11, 6, 7, 14, 15);
+  out[0] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t0, even, t2));
+  if constexpr (C > 1) out[1] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t1, even, t3));
+  if constexpr (C > 2) out[2] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t0, odd, t2));
+  if constexpr (C > 3) out[3] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t1, odd, t3));
+#else
+  gather_rows_narrow<C, S>(base, idx, out);
+#endif
+}
+
+// Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
+inline m8 lanes_zero(const std::uint8_t* bytes) {
+#if defined(__AVX512F__)  // (the maskz form: GCC 12's unmasked one warns on its undefined source)
+  const m8 v = reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes))));
+#else
+  const m8 v = {bytes[0], bytes[1], bytes[2], bytes[3], bytes[4], bytes[5], bytes[6], bytes[7]};
+#endif
+  return v == 0;
+}
+
+}  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS
