@@ -23,12 +23,11 @@ void Lps<D>::initialise(const System<D>& sys) {
     m_ = weighted_volumes(sys);
   const auto n = m_.size();
   theta_.assign(n, 0.0);
-  alpha_.assign(n, 0.0);
   inv_m_.resize(n);
-  beta_.resize(n);
+  alpha_beta_.assign(2 * n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;  // a particle without bonds feels no force
-    beta_[i] = k_.B * inv_m_[i];
+    alpha_beta_[2 * i + 1] = k_.B * inv_m_[i];
   }
 }
 
@@ -45,8 +44,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.uniform_volume = sys.uniform_volume();
   a.m = m_.data();
   a.theta = theta_.data();
-  a.alpha = alpha_.data();
-  a.beta = beta_.data();
+  a.alpha_beta = alpha_beta_.data();
   a.f = p.f.data()->data();
   a.energy = req.energy ? req.energy->data() : nullptr;
   a.A = k_.A;
@@ -60,7 +58,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   // Pass 1: break bonds, dilatation over the intact ones; ghosts copy their owner's.
   std::int64_t newly = kernels::lps_dilatation<D>(a);
   for (Index g = 0; g < p.n_ghost(); ++g) theta_[n + g] = theta_[p.ghost_owner[g]];
-  for (Index i = 0; i < p.size(); ++i) alpha_[i] = k_.A * theta_[i] * inv_m_[i];
+  for (Index i = 0; i < p.size(); ++i) alpha_beta_[2 * i] = k_.A * theta_[i] * inv_m_[i];
   // Pass 2: pair forces.
   newly += kernels::lps_forces<D>(a);
   return newly;

@@ -24,7 +24,8 @@ class Lps final : public Model<D> {
   LpsCoefficients k_{};
   std::vector<double> m_;      // weighted volume, real + ghosts
   std::vector<double> theta_;  // dilatation of the last evaluation, real + ghosts
-  std::vector<double> inv_m_, alpha_, beta_;  // 1/m, Aθ/m, B/m per particle
+  std::vector<double> inv_m_;       // 1/m per particle
+  std::vector<double> alpha_beta_;  // (Aθ/m, B/m) per particle, interleaved for the kernel's gather
 };
 
 }  // namespace pdmpm::pd

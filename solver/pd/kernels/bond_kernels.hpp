@@ -62,8 +62,7 @@ struct LpsArgs {
   bool uniform_volume;    // as in PmbArgs
   const double* m;        // weighted volume, real + ghosts
   double* theta;          // dilatation, real + ghosts (pass 1 writes real ones)
-  const double* alpha;    // A θ / m per particle (pass 2 reads, real + ghosts)
-  const double* beta;     // B / m per particle (0 where m = 0)
+  const double* alpha_beta;  // (A θ / m, B / m) per particle, interleaved (pass 2 reads, real + ghosts; 0 where m = 0)
   double* f;
   double* energy;
   double A, B, kappa, gamma;

@@ -218,20 +218,20 @@ std::int64_t lps_forces(const LpsArgs& a) {
     d8 acc[D], dev = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;
-    d8 alpha_j = splat(0.0), beta_j = splat(0.0);
+    d8 ab_j[2];  // α_j, b_j
     const double* ui = a.u + D * i;
-    const double alpha_i = a.alpha[i], beta_i = a.beta[i], theta_i = a.theta[i];
+    const double alpha_i = a.alpha_beta[2 * i], beta_i = a.alpha_beta[2 * i + 1], theta_i = a.theta[i];
     const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
     with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
       for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
         const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
         B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
-        for (int l = 0; l < lanes; ++l) {
-          alpha_j[l] = a.alpha[B.j[l]];
-          beta_j[l] = a.beta[B.j[l]];
-        }
+        if constexpr (decltype(mode)::wide)  // rows of two doubles: readable wherever u_j is
+          gather_rows_wide<2, 2>(a.alpha_beta, B.j, ab_j);
+        else
+          gather_rows_narrow<2, 2>(a.alpha_beta, B.j, ab_j);
         const Deformed<D> g = deform<D>(B);
-        const d8 coef = B.wv * (B.L * (alpha_i + alpha_j) * (g.len + B.L) + (beta_i + beta_j) * g.num) /
+        const d8 coef = B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) /
                         ((g.len + B.L) * g.len);
         for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
         if constexpr (Energy) {

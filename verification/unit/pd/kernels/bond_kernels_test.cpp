@@ -41,7 +41,7 @@ struct Outputs {
 template <int D>
 struct Body {
   System<D> sys;
-  std::vector<double> m, alpha, beta;
+  std::vector<double> m, alpha_beta;
 
   explicit Body(bool uniform_volume) {
     test::BlockSpec spec;
@@ -61,12 +61,11 @@ struct Body {
     for (BondIndex b = 0; b < sys.families.n_bonds(); b += 7) sys.broken[b] = 1;  // pre-cut bonds
     const auto n = static_cast<std::size_t>(p.size());
     m.resize(n);
-    alpha.resize(n);
-    beta.resize(n);
+    alpha_beta.resize(2 * n);
     for (std::size_t i = 0; i < n; ++i) {
       m[i] = 1e-9 * (1.0 + 0.1 * static_cast<double>(i % 3));
-      alpha[i] = 1e3 * std::cos(0.3 * static_cast<double>(i));
-      beta[i] = 2e3 * (1.0 + 0.05 * static_cast<double>(i % 4));
+      alpha_beta[2 * i] = 1e3 * std::cos(0.3 * static_cast<double>(i));
+      alpha_beta[2 * i + 1] = 2e3 * (1.0 + 0.05 * static_cast<double>(i % 4));
     }
   }
 
@@ -97,8 +96,7 @@ struct Body {
     a.uniform_volume = sys.uniform_volume();
     a.m = m.data();
     a.theta = out.theta.data();
-    a.alpha = alpha.data();
-    a.beta = beta.data();
+    a.alpha_beta = alpha_beta.data();
     a.f = out.f.data();
     a.energy = out.energy.data();
     a.A = 3.0;
