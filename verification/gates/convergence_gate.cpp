@@ -30,6 +30,7 @@
 #include "verification/gates/spherical_wave_run.hpp"
 #include "verification/support/convergence_fit.hpp"
 #include "verification/support/gate.hpp"
+#include "verification/support/speed_accuracy.hpp"
 
 namespace pdmpm {
 namespace {
@@ -207,28 +208,19 @@ TEST(FullConvergence, Study) {
 
   // Speed against accuracy: every run, Pareto front marked.
   std::vector<const Point*> all;
-  for (const auto& [k, p] : study.runs()) all.push_back(&p);
-  std::sort(all.begin(), all.end(), [](auto* a, auto* b) { return a->seconds < b->seconds; });
-  std::vector<const Point*> front;
-  double best = 1e300;
-  for (auto* p : all)
-    if (p->l2 < best) best = p->l2, front.push_back(p);
-  json series_s = json::array();
-  std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> by_case;
-  for (auto* p : all) by_case[p->c.label].first.push_back(p->seconds), by_case[p->c.label].second.push_back(p->l2);
-  for (const auto& [label, xy] : by_case) series_s.push_back({{"label", label}, {"x", xy.first}, {"y", xy.second}, {"style", "points"}});
-  std::vector<double> fx, fy;
-  json front_rows = json::array();
-  for (auto* p : front) {
-    fx.push_back(p->seconds), fy.push_back(p->l2);
-    front_rows.push_back(row(*p));
+  std::vector<test::SpeedAccuracyPoint> points;
+  for (const auto& [k, p] : study.runs()) {
+    all.push_back(&p);
+    points.push_back({p.c.label, p.seconds, p.l2});
   }
-  series_s.push_back({{"label", "Pareto front"}, {"x", fx}, {"y", fy}, {"style", "dashed"}});
+  json front_rows = json::array();
+  for (std::size_t k : test::pareto_front(points)) front_rows.push_back(row(*all[k]));
   test::record_data(problem, "11_speed_accuracy",
-                    {{"kind", "plot"}, {"title", "Speed against accuracy: one point per (ω, m, Δx), t = 3×10⁻⁵ s"}, {"xlabel", "wall time [s] (2 threads)"},
-                     {"ylabel", "e₂"}, {"xscale", "log"}, {"yscale", "log"}, {"series", series_s},
-                     {"caption", "Wall time = particles, families and time stepping to 3×10⁻⁵ s on the octant cut at 21 cm "
-                                 "(the Lanczos stable-step estimate is left out). Pareto front: no other run is both faster and more accurate."}});
+                    test::speed_accuracy_plot(points, "Speed against accuracy: one point per (ω, m, Δx), t = 3×10⁻⁵ s",
+                                              "wall time [s] (2 threads)", "e₂",
+                                              "Wall time = particles, families and time stepping to 3×10⁻⁵ s on the octant cut at 21 cm "
+                                              "(the Lanczos stable-step estimate is left out). Pareto front: no other run is both faster "
+                                              "and more accurate."));
   test::record_data(problem, "12_pareto_front", {{"kind", "table"}, {"title", "Runs on the Pareto front"}, {"columns", row_columns}, {"rows", front_rows}});
 }
 
