@@ -69,8 +69,10 @@ struct Body {
     }
   }
 
-  PmbArgs pmb_args(Outputs& out, bool breaking, bool after_force) {
-    PmbArgs a{};
+  // The fields PmbArgs and LpsArgs share, pointed at this body and at `out`.
+  template <class Args>
+  Args common_args(Outputs& out) {
+    Args a{};
     a.fam = sys.family_view();
     a.fam.broken = out.broken.data();
     a.table = sys.table.view();
@@ -79,33 +81,29 @@ struct Body {
     a.uniform_volume = sys.uniform_volume();
     a.f = out.f.data();
     a.energy = out.energy.data();
+    a.breaking = true;
+    a.s0 = 0.01;  // the body's strains reach ~2 %
+    return a;
+  }
+
+  PmbArgs pmb_args(Outputs& out, bool breaking, bool after_force) {
+    auto a = common_args<PmbArgs>(out);
     a.c = 1e12;
     a.breaking = breaking;
-    a.s0 = 0.01;
     a.after_force = after_force;
     return a;
   }
 
   LpsArgs lps_args(Outputs& out, bool after_force) {
-    LpsArgs a{};
-    a.fam = sys.family_view();
-    a.fam.broken = out.broken.data();
-    a.table = sys.table.view();
-    a.u = sys.particles.u.data()->data();
-    a.volume = sys.particles.volume.data();
-    a.uniform_volume = sys.uniform_volume();
+    auto a = common_args<LpsArgs>(out);
     a.m = m.data();
     a.theta = out.theta.data();
     a.alpha_beta = alpha_beta.data();
-    a.f = out.f.data();
-    a.energy = out.energy.data();
     a.A = 3.0;
     a.B = 5.0;
     a.kappa = 7.0;
     a.gamma = 1.0 / D;
     a.d = D;
-    a.breaking = true;
-    a.s0 = 0.01;
     a.after_force = after_force;
     return a;
   }
