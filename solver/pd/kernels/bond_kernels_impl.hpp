@@ -32,25 +32,6 @@ struct GatherMode {
   static constexpr bool wide = Wide, uniform_volume = UniformVolume;
 };
 
-// Calls family(GatherMode<…>{}) for particle i's family [begin, end).
-template <int D, class Family>
-__attribute__((always_inline)) inline void with_gather_mode(const FamilyView& fam, bool uniform_volume,
-                                                            BondIndex begin, BondIndex end, Family&& family) {
-  // D j + 4 ≤ D n_sites: j < n_sites − 1 in 2D/3D, j < n_sites − 3 in 1D.
-  const Index limit = fam.n_sites - (4 - 1) / D;
-  Index j_max = 0;
-  for (BondIndex b = begin; b < end; ++b) j_max = std::max(j_max, fam.neighbor[b]);
-  const bool wide = j_max < limit;
-  if (wide && uniform_volume)
-    family(GatherMode<true, true>{});
-  else if (wide)
-    family(GatherMode<true, false>{});
-  else if (uniform_volume)
-    family(GatherMode<false, true>{});
-  else
-    family(GatherMode<false, false>{});
-}
-
 // One block of up to eight bonds of particle i, gathered into lanes.
 template <int D>
 struct Block {
@@ -98,6 +79,35 @@ struct Block {
     live = lanes_zero(fam.broken + b0) & (lane_ids < count);
   }
 };
+
+// The bond loop of particle i: gathers each block of its family into B and
+// calls block(mode, b0, count), with the gather mode chosen once per family.
+template <int D, class Args, class Fn>
+__attribute__((always_inline)) inline void for_each_block(const Args& a, Index i, Block<D>& B, Fn&& block) {
+  const FamilyView& fam = a.fam;
+  const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
+  // D j + 4 ≤ D n_sites: j < n_sites − 1 in 2D/3D, j < n_sites − 3 in 1D.
+  const Index limit = fam.n_sites - (4 - 1) / D;
+  Index j_max = 0;
+  for (BondIndex b = begin; b < end; ++b) j_max = std::max(j_max, fam.neighbor[b]);
+  auto loop = [&](auto mode) {
+    const double* ui = a.u + D * i;
+    for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
+      const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+      B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
+      block(mode, b0, count);
+    }
+  };
+  const bool wide = j_max < limit;
+  if (wide && a.uniform_volume)
+    loop(GatherMode<true, true>{});
+  else if (wide)
+    loop(GatherMode<true, false>{});
+  else if (a.uniform_volume)
+    loop(GatherMode<false, true>{});
+  else
+    loop(GatherMode<false, false>{});
+}
 
 // Deformed bonds of a block: y = ξ + η, |y|, and num = 2 ξ·η + η·η = (|y| + |ξ|) e,
 // the extension numerator without cancellation.
@@ -152,24 +162,18 @@ std::int64_t pmb(const PmbArgs& a) {
     d8 acc[D], w = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;
-    const double* ui = a.u + D * i;
-    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
-      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
-        const Deformed<D> g = deform<D>(B);
-        const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
-        const m8 acts = a.after_force ? B.live : B.live & ~breaks;
-        const d8 cw = c * B.wv;
-        const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
-        for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
-        if constexpr (Energy) {
-          const d8 s = g.num / ((g.len + B.L) * B.L);
-          w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
-        }
-        newly += mark_broken(fam, b0, count, breaks);
+    for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+      const Deformed<D> g = deform<D>(B);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, a.after_force);
+      const m8 acts = a.after_force ? B.live : B.live & ~breaks;
+      const d8 cw = c * B.wv;
+      const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
+      for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
+      if constexpr (Energy) {
+        const d8 s = g.num / ((g.len + B.L) * B.L);
+        w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
       }
+      newly += mark_broken(fam, b0, count, breaks);
     });
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = lane_sum(w);
@@ -187,18 +191,12 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
   for (Index i = 0; i < fam.n_owners; ++i) {
     d8 acc = splat(0.0);
     Block<D> B;
-    const double* ui = a.u + D * i;
-    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
-      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
-        const Deformed<D> g = deform<D>(B);
-        const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
-        const m8 acts = B.live & ~breaks;
-        acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
-        newly += mark_broken(fam, b0, count, breaks);
-      }
+    for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+      const Deformed<D> g = deform<D>(B);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+      const m8 acts = B.live & ~breaks;
+      acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
+      newly += mark_broken(fam, b0, count, breaks);
     });
     a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
   }
@@ -219,28 +217,22 @@ std::int64_t lps_forces(const LpsArgs& a) {
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;
     d8 ab_j[2];  // α_j, b_j
-    const double* ui = a.u + D * i;
     const double alpha_i = a.alpha_beta[2 * i], beta_i = a.alpha_beta[2 * i + 1], theta_i = a.theta[i];
-    const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
-    with_gather_mode<D>(fam, a.uniform_volume, begin, end, [&](auto mode) {
-      for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
-        const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-        B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
-        if constexpr (decltype(mode)::wide)  // rows of two doubles: readable wherever u_j is
-          gather_rows_wide<2, 2>(a.alpha_beta, B.j, ab_j);
-        else
-          gather_rows_narrow<2, 2>(a.alpha_beta, B.j, ab_j);
-        const Deformed<D> g = deform<D>(B);
-        const d8 coef = B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) /
-                        ((g.len + B.L) * g.len);
-        for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
-        if constexpr (Energy) {
-          const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
-          dev += keep(B.live, B.wv * ed * ed);
-        }
-        // Break-after-force rule: i's side only, which no other particle reads in this pass.
-        newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
+    for_each_block<D>(a, i, B, [&](auto mode, BondIndex b0, int count) {
+      if constexpr (decltype(mode)::wide)  // rows of two doubles: readable wherever u_j is
+        gather_rows_wide<2, 2>(a.alpha_beta, B.j, ab_j);
+      else
+        gather_rows_narrow<2, 2>(a.alpha_beta, B.j, ab_j);
+      const Deformed<D> g = deform<D>(B);
+      const d8 coef = B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) /
+                      ((g.len + B.L) * g.len);
+      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
+      if constexpr (Energy) {
+        const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
+        dev += keep(B.live, B.wv * ed * ed);
       }
+      // Break-after-force rule: i's side only, which no other particle reads in this pass.
+      newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
     });
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = 0.5 * a.kappa * theta_i * theta_i + 0.5 * beta_i * lane_sum(dev);
