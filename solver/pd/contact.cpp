@@ -61,10 +61,11 @@ std::int64_t ShortRangeContact<D>::add_forces(System<D>& sys) {
   const double skin = 0.3 * dx;  // a list of ~18 partners in 3D, rebuilt rarely in small-strain runs
   const double k = prm_.stiffness_factor * c_ / sys.delta;
   y_.resize(p.size());
+#pragma omp parallel for schedule(static)
   for (Index i = 0; i < p.size(); ++i) y_[i] = p.position(i);
   real_ = p.n_real;
   if (list_is_stale(skin) || static_cast<Index>(start_.size()) != real_ + 1) build_list(reach + skin);
-  const double reach2 = reach * reach;
+  const double reach2 = reach * reach, f2 = prm_.distance_factor * prm_.distance_factor;
   std::int64_t pairs = 0;
 #pragma omp parallel for schedule(static) reduction(+ : pairs)
   for (Index i = 0; i < p.n_real; ++i) {
@@ -76,8 +77,11 @@ std::int64_t ShortRangeContact<D>::add_forces(System<D>& sys) {
       const Vec<D> d = y_[j] - y_[i];
       const double l2 = d.squaredNorm();
       if (l2 >= reach2 || l2 == 0.0) continue;
-      const double dij = std::min(prm_.distance_factor * (p.x0[j] - p.x0[i]).norm(), reach);
-      if (l2 >= dij * dij || (!prm_.bonded_pairs && bonded(sys, i, j))) continue;
+      // Most candidates are lattice neighbours at rest, out of their own reach d_ij:
+      // rejected on squares too; the square roots only for pairs that press.
+      const double r02 = (p.x0[j] - p.x0[i]).squaredNorm();
+      if (l2 >= std::min(f2 * r02, reach2) || (!prm_.bonded_pairs && bonded(sys, i, j))) continue;
+      const double dij = std::min(prm_.distance_factor * std::sqrt(r02), reach);
       const double l = std::sqrt(l2);
       fi += (k * (l - dij) * p.volume[j] / l) * d;
       ++pairs;
