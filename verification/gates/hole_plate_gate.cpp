@@ -121,7 +121,9 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
                      {"columns", {"event", "paper [s]", "pdmpm [s]"}},
                      {"rows", rows},
                      {"caption", "Run at the paper's resolution and Δt, continued to 2400 steps. Times are history samples "
-                                 "(every 5 steps = 0.067 µs). The paper's 1200 steps end at 16.04 µs."}});
+                                 "(every 5 steps = 0.067 µs). The paper's 1200 steps end at 16.04 µs. Its times are the frames of "
+                                 "its fig. 3 (steps 1, 900, 1000, 1200 × 1.33e-8 s): each event happened at or before its "
+                                 "frame (reference_data/README.md)."}});
   test::record_crack_table(problem, crack, cR,
                            "Angle: chord origin → tip from the x axis (the load axis). Overall principal-axis angle of all "
                                "cracked particles: " + std::to_string(crack.at("overall_angle_deg").get<double>()) + "°.");

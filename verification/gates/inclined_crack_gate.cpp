@@ -86,7 +86,9 @@ TEST(FullInclinedCrack, CracksAgainstSeed004) {
                      {"columns", {"event", "paper", "pdmpm"}},
                      {"rows", rows},
                      {"caption", "Times in seconds unless marked. Run at the paper's resolution and Δt, continued to 2000 "
-                                 "steps; times are history samples (every 5 steps = 0.067 µs)."}});
+                                 "steps; times are history samples (every 5 steps = 0.067 µs). The paper's times are the frames of "
+                                 "its fig. 5 (steps 300, 700, 800 × 1.33e-8 s): each event happened at or before its frame "
+                                 "(reference_data/README.md)."}});
   test::record_crack_table(problem, crack, cR,
                            "Angle: chord origin → tip from the x axis.");
 
