@@ -35,8 +35,8 @@ struct System {
   Index n_real() const { return particles.n_real; }
 
   kernels::FamilyView family_view() {
-    return {families.n_owners(), particles.size(),        families.stencil.size(), families.offsets.data(),
-            families.neighbor.data(), families.shape.data(), broken.data()};
+    return {families.n_owners(), particles.size(), families.offsets.data(), families.neighbor.data(),
+            families.shape.data(), broken.data()};
   }
 
   // Whether every particle (ghosts too) has the same volume, as on a lattice body.

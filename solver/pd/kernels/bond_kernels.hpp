@@ -33,7 +33,6 @@ struct BondShapeTable {
 struct FamilyView {
   Index n_owners;
   Index n_sites;            // particles a neighbour index may name (real + ghosts): the extent of u
-  BondIndex stencil_size;   // a family this long is the whole stencil, in stencil order
   const BondIndex* offsets;
   const Index* neighbor;
   const std::uint16_t* shape;
