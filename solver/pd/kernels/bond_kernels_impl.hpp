@@ -3,8 +3,9 @@
 // See bond_kernels.hpp for the canonical lane order that makes every build
 // give the same bits.
 //
-// Each block of eight bonds is done in two phases: a scalar gather of the
-// neighbours' data into lanes, then arithmetic on whole lane vectors
+// Each block of eight bonds is done in two phases: a gather of the neighbours'
+// data into lanes (lane_gather.hpp: whole-row loads and a transpose with
+// AVX-512, scalar loads otherwise), then arithmetic on whole lane vectors
 // (lane_vector.hpp), with selects instead of branches.
 #include <algorithm>
 #include <cmath>
