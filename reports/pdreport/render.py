@@ -10,7 +10,7 @@ import jinja2
 from markupsafe import Markup, escape
 
 from . import numfmt
-from .load import FAIL, MALFORMED, MISSING, OK, PASS, Issue, Results, external_references
+from .load import FAIL, MALFORMED, MISSING, OK, PASS, SKIPPED, Issue, Results, external_references
 from .plots import plot_png
 
 TEMPLATES = Path(__file__).resolve().parent.parent / "templates"
@@ -49,6 +49,7 @@ def summary(results: Results, allow_missing: bool = False) -> dict:
         "passed": results.count(PASS),
         "failed": results.count(FAIL),
         "missing": results.count(MISSING),
+        "skipped": results.count(SKIPPED),
         "malformed": results.count(MALFORMED),
         "sections_missing": sum(1 for p in results.problems if p.status == MISSING),
         "issues": len(results.issues),
@@ -61,6 +62,8 @@ def summary(results: Results, allow_missing: bool = False) -> dict:
 def summary_line(s: dict) -> str:
     line = (f"{s['gates']} gates: {s['passed']} passed, {s['failed']} failed, "
             f"{s['missing']} missing, {s['malformed']} malformed")
+    if s["skipped"]:
+        line += f"; {s['skipped']} recorded by another command (full tier, benchmarks), not run here"
     if s["sections_missing"]:
         line += f"; {s['sections_missing']} problem section(s) without results"
     if s["issues"]:
@@ -79,7 +82,7 @@ def _environment() -> jinja2.Environment:
     env.filters.update(num=numfmt.num, sortkey=numfmt.sort_key, rate=numfmt.rate,
                        duration=numfmt.duration, anchor=anchor, breakable=breakable,
                        count=lambda n, word: f"{n} {word}{'' if n == 1 else 's'}")
-    env.globals.update(PASS=PASS, FAIL=FAIL, MALFORMED=MALFORMED, MISSING=MISSING, OK=OK)
+    env.globals.update(PASS=PASS, FAIL=FAIL, MALFORMED=MALFORMED, MISSING=MISSING, OK=OK, SKIPPED=SKIPPED)
     return env
 
 

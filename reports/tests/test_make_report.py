@@ -235,6 +235,11 @@ class MalformedInputs(ReportTestCase):
         path.write_text('id = "fixture_bar"\ntitle = "unterminated\n')
         self.check_malformed(path, ["invalid TOML"])
 
+    def test_recorded_by_naming_a_gate_the_problem_does_not_list(self):
+        path = self.problems / "fixture_constants.toml"
+        path.write_text(path.read_text() + '\n[recorded_by]\n"fixture.nowhere" = "the full tier"\n')
+        self.check_malformed(path, ['"recorded_by" names gate(s) not in "gates"', "fixture.nowhere"])
+
     def test_malformed_provenance(self):
         path = self.results / "provenance.json"
         self.edit_json(path, threads="two")
@@ -272,6 +277,19 @@ class MissingInputs(ReportTestCase):
         self.assertEqual(proc.returncode, 1)
         self.assertIn("1 missing", proc.stdout)
         self.assertRegex(page, r'<tr class="MISSING" id="gate-fixture.constants.lattice_sum_m8"')
+
+    def test_gate_another_command_records_is_skipped_not_missing(self):
+        # The full tier and ci/bench.sh record gates that a CI report does not have.
+        path = self.problems / "fixture_constants.toml"
+        path.write_text(path.read_text() + '\n[recorded_by]\n"fixture.constants.lattice_sum_m8" = "the full tier"\n')
+        self.gate_path("fixture.constants.lattice_sum_m8").unlink()
+        proc, page = self.run_report()
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("0 missing", proc.stdout)
+        self.assertIn("1 recorded by another command", proc.stdout)
+        self.assertRegex(page, r'<tr class="SKIPPED" id="gate-fixture.constants.lattice_sum_m8"')
+        self.assertIn("recorded by the full tier", page)
+        self.assertIn("ALL GATES PASS", page)
 
     def test_missing_image_and_provenance(self):
         (self.results / "data" / "fixture_bar" / "snapshot.png").unlink()
