@@ -136,6 +136,8 @@ struct Body {
 
 template <int D>
 void expect_every_set_matches_sse2() {
+  // On a CPU with SSE2 only there is nothing to compare: the test is skipped, not passed.
+  if (runnable_sets().size() == 1) GTEST_SKIP() << "only SSE2 on this CPU: nothing to compare";
   for (const bool uniform : {true, false}) {
     Body<D> body(uniform);
     ASSERT_EQ(body.sys.uniform_volume(), uniform);
@@ -161,12 +163,6 @@ void expect_every_set_matches_sse2() {
 TEST(BondKernels, EveryInstructionSetGivesTheSameBits1D) { expect_every_set_matches_sse2<1>(); }
 TEST(BondKernels, EveryInstructionSetGivesTheSameBits2D) { expect_every_set_matches_sse2<2>(); }
 TEST(BondKernels, EveryInstructionSetGivesTheSameBits3D) { expect_every_set_matches_sse2<3>(); }
-
-TEST(BondKernels, ThisMachineRunsMoreThanSse2) {
-  // Otherwise the tests above compare SSE2 with itself; say so rather than pass silently.
-  if (runnable_sets().size() == 1) GTEST_SKIP() << "only SSE2 on this CPU: the instruction-set comparison is empty";
-  SUCCEED();
-}
 
 }  // namespace
 }  // namespace pdmpm::pd::kernels
