@@ -3,7 +3,8 @@
 #include <benchmark/benchmark.h>
 
 #include "solver/io/scene.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
+#include "solver/sim/pd_setup.hpp"
 #include "solver/time/stable_step.hpp"
 
 namespace pdmpm::bench {
@@ -20,8 +21,8 @@ void verlet_step(benchmark::State& state, const char* model) {
   const auto scene = io::parse_scene_text(text, "bench");
   auto setup = sim::build_pd<3>(scene);
   for (Index i = 0; i < setup.system.n_real(); ++i) setup.system.particles.v[i][0] = std::sin(i * 0.1);
-  sim::PdState<3> st(setup);
-  sim::VerletStepper<3> stepper(st, 0.5 * time::silling_askari_step<3>(setup.system, *setup.model));
+  auto st = sim::make_simulation(setup);
+  time::VelocityVerlet<3> stepper(st, 0.5 * time::silling_askari_step<3>(setup.system, *setup.model));
   stepper.start();
   for (auto _ : state) stepper.step(false);
   state.counters["particle_steps/s"] =

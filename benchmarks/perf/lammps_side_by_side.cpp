@@ -9,8 +9,8 @@
 
 #include "benchmarks/perf/perf_output.hpp"
 #include "benchmarks/perf/perf_problem.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
+#include "solver/sim/pd_setup.hpp"
 #include "verification/support/lammps.hpp"
 
 namespace pdmpm::perf {
@@ -28,8 +28,8 @@ OurRun run_ours(const io::Scene& scene, std::int64_t steps, double dt) {
   const int before = omp_get_max_threads();
   omp_set_num_threads(1);
   auto setup = sim::build_pd<3>(scene);
-  sim::PdState<3> state(setup);
-  sim::VerletStepper<3> stepper(state, dt);
+  auto state = sim::make_simulation(setup);
+  time::VelocityVerlet<3> stepper(state, dt);
   stepper.start();  // the first force evaluation: outside the timing, as LAMMPS' set-up
   const double k0 = state.force_seconds(), c0 = state.contact_seconds();
   const auto t0 = std::chrono::steady_clock::now();

@@ -5,8 +5,8 @@
 #include "benchmarks/perf/memory_status.hpp"
 #include "benchmarks/perf/perf_output.hpp"
 #include "benchmarks/perf/perf_problem.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
+#include "solver/sim/pd_setup.hpp"
 
 namespace pdmpm::perf {
 
@@ -20,8 +20,8 @@ nlohmann::json memory_per_bond(const std::string& model, bool gate) {
   double sides = 0.0, particles = 0.0, layout_bond = 0.0, layout_particle = 0.0;
   {
     auto setup = sim::build_pd<3>(scene);
-    sim::PdState<3> state(setup);
-    sim::VerletStepper<3> stepper(state, perf_dt(refine));
+    auto state = sim::make_simulation(setup);
+    time::VelocityVerlet<3> stepper(state, perf_dt(refine));
     stepper.start();
     after = memory_status();
     const auto& sys = setup.system;

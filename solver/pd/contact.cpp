@@ -5,12 +5,12 @@
 namespace pdmpm::pd {
 namespace {
 
-// True if j is an intact bond partner of i.
+// True if j is a live bond partner of i.
 template <int D>
 bool bonded(const System<D>& sys, Index i, Index j) {
   const auto& fam = sys.families;
   for (BondIndex b = fam.begin(i); b < fam.end(i); ++b)
-    if (fam.neighbor[b] == j) return !sys.broken[b];
+    if (fam.neighbor[b] == j) return sys.bonds.live(b);
   return false;
 }
 

@@ -106,7 +106,7 @@ void CrackObservables<D>::sample(const System<D>& sys, const std::vector<double>
   for (std::size_t k = 0; k < locations_.size(); ++k) {
     std::int64_t broken = 0;
     for (Index i : locations_[k].particles)
-      for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) broken += sys.broken[b];
+      for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) broken += sys.bonds.broken(b);
     if (!started_) baseline_broken_[k] = broken;
     broken_at_[k] = broken - baseline_broken_[k];
     if (broken_at_[k] > 0 && !first_failure_[k]) first_failure_[k] = t;
@@ -135,18 +135,16 @@ void CrackObservables<D>::sample(const System<D>& sys, const std::vector<double>
 
 template <int D>
 void CrackObservables<D>::count_components(const System<D>& sys, const std::vector<double>& phi) {
-  const auto& fam = sys.families;
   const auto& p = sys.particles;
   const Index n = p.n_real;
   UnionFind all(n), sound(n);
   auto is_sound = [&](Index i) { return phi[i] < settings_.threshold; };
   for (Index i = 0; i < n; ++i)
-    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-      if (sys.broken[b]) continue;
-      const Index j = real_of(p, fam.neighbor[b]);
+    sys.for_each_live_bond(i, [&](BondIndex, Index neighbor, int) {
+      const Index j = real_of(p, neighbor);
       all.unite(i, j);
       if (is_sound(i) && is_sound(j)) sound.unite(i, j);
-    }
+    });
   const double min_size = std::max(1.0, settings_.min_piece_fraction * static_cast<double>(n));
   components_ = pieces_ = 0;
   for (Index i = 0; i < n; ++i) {

@@ -17,7 +17,7 @@ std::vector<double> local_damage(const System<D>& sys) {
     for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
       const double V = p.volume[fam.neighbor[b]];
       all += V;
-      if (!sys.broken[b]) intact += V;
+      if (!sys.bonds.broken(b)) intact += V;
     }
     phi[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
   }

@@ -20,15 +20,28 @@ void Lps<D>::initialise(const System<D>& sys) {
   if (sys.continuum_weighted_volume)
     m_.assign(sys.particles.size(), lps_weighted_volume(sys.influence, sys.setting, sys.delta, sys.measure));
   else
-    m_ = weighted_volumes(sys);
+    m_ = reference_weighted_volumes(sys);
   const auto n = m_.size();
   theta_.assign(n, 0.0);
   inv_m_.resize(n);
   alpha_beta_.assign(2 * n, 0.0);
-  for (std::size_t i = 0; i < n; ++i) {
-    inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;  // a particle without bonds feels no force
-    alpha_beta_[2 * i + 1] = k_.B * inv_m_[i];
-  }
+  for (std::size_t i = 0; i < n; ++i) set_weighted_volume(i, m_[i]);
+}
+
+template <int D>
+void Lps<D>::set_weighted_volume(std::size_t i, double m) {
+  m_[i] = m;
+  inv_m_[i] = m > 0.0 ? 1.0 / m : 0.0;  // a particle without bonds feels no force
+  alpha_beta_[2 * i + 1] = k_.B * inv_m_[i];
+}
+
+template <int D>
+void Lps<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
+  // The continuum weighted volume does not depend on which bonds are live.
+  if (sys.continuum_weighted_volume) return;
+  const auto& p = sys.particles;
+  for (Index i : changed) set_weighted_volume(i, reference_weighted_volume(sys, i));
+  for (Index g = 0; g < p.n_ghost(); ++g) set_weighted_volume(p.n_real + g, m_[p.ghost_owner[g]]);
 }
 
 template <int D>
@@ -75,16 +88,12 @@ template <int D>
 double Lps<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   // Bond stiffness per unit extension: the direct term B ω β (1/m_i + 1/m_j)
   // plus a bound on the dilatation coupling, d|A| ω β (1/m_i + 1/m_j).
-  const auto& fam = sys.families;
   const double coef = k_.B + k_.d * std::abs(k_.A);
   double sum = 0.0;
-  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-    if (sys.broken[b]) continue;
-    const Index j = fam.neighbor[b];
-    const int k = fam.shape[b];
+  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
     const double inv = (m_[i] > 0 ? 1.0 / m_[i] : 0.0) + (m_[j] > 0 ? 1.0 / m_[j] : 0.0);
     sum += coef * inv * sys.table.weight[k] * sys.particles.volume[j];
-  }
+  });
   return sum;
 }
 

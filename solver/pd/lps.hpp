@@ -15,6 +15,7 @@ class Lps final : public Model<D> {
   std::string name() const override { return "lps"; }
   std::pair<double, double> poisson_range(Setting s) const override;
   void initialise(const System<D>& sys) override;
+  void refresh(const System<D>& sys, const std::vector<Index>& changed) override;
   std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) override;
   void dilatation(const System<D>& sys, std::vector<double>& theta) const override;
   double stiffness_row_sum(const System<D>& sys, Index i) const override;
@@ -26,6 +27,8 @@ class Lps final : public Model<D> {
   std::vector<double> theta_;  // dilatation of the last evaluation, real + ghosts
   std::vector<double> inv_m_;       // 1/m per particle
   std::vector<double> alpha_beta_;  // (Aθ/m, B/m) per particle, interleaved for the kernel's gather
+
+  void set_weighted_volume(std::size_t i, double m);
 };
 
 }  // namespace pdmpm::pd

@@ -27,8 +27,11 @@ class Model {
   virtual std::string name() const = 0;
   // Admissible Poisson's ratio interval [lo, hi] for this model and setting.
   virtual std::pair<double, double> poisson_range(Setting s) const = 0;
-  // Precompute what depends on the reference configuration and intact bonds.
+  // Precompute what depends on the reference configuration and live bonds.
   virtual void initialise(const System<D>& sys) = 0;
+  // The live bonds of these real particles changed (particle kinds changed):
+  // recompute what initialise derived from them, for them only.
+  virtual void refresh(const System<D>& sys, const std::vector<Index>& changed) { (void)sys, (void)changed; }
   // Internal force density of every real particle into sys.particles.f.
   // Returns the number of bonds broken by this call (counted once per bond side).
   virtual std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) = 0;

@@ -39,13 +39,10 @@ std::int64_t Pmb<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
 template <int D>
 double Pmb<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   // C_ij = c ω β / |ξ| for PMB (Silling & Askari 2005).
-  const auto& fam = sys.families;
   double sum = 0.0;
-  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-    if (sys.broken[b]) continue;
-    const int k = fam.shape[b];
-    sum += c_ * sys.table.weight[k] / sys.table.length[k] * sys.particles.volume[fam.neighbor[b]];
-  }
+  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
+    sum += c_ * sys.table.weight[k] / sys.table.length[k] * sys.particles.volume[j];
+  });
   return sum;
 }
 

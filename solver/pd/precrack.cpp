@@ -50,9 +50,9 @@ std::int64_t cut_bonds(System<D>& sys, const CrackSurface<D>& crack) {
 #pragma omp parallel for schedule(static) reduction(+ : cut)
   for (Index i = 0; i < p.n_real; ++i)
     for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-      if (sys.broken[b]) continue;
+      if (sys.bonds.broken(b)) continue;
       if (crosses_any<D>(p.x0[i], p.x0[fam.neighbor[b]], crack)) {
-        sys.broken[b] = 1;
+        sys.bonds.cut(b);
         ++cut;
       }
     }

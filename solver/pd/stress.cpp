@@ -37,21 +37,17 @@ Tensor6 hooke(const Mat<D>& eps, const Elastic& m, Setting s) {
 
 template <int D>
 std::vector<Tensor6> particle_stress(const System<D>& sys) {
-  const auto& fam = sys.families;
   const auto& p = sys.particles;
   const auto& t = sys.table;
   std::vector<Tensor6> out(p.n_real, Tensor6{});
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < p.n_real; ++i) {
     Mat<D> K = Mat<D>::Zero(), N = Mat<D>::Zero();
-    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-      if (sys.broken[b]) continue;
-      const Index j = fam.neighbor[b];
-      const int k = fam.shape[b];
+    sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
       const double w = t.weight[k] * p.volume[j];
       K += w * t.xi[k] * t.xi[k].transpose();
       N += w * (p.u[j] - p.u[i]) * t.xi[k].transpose();
-    }
+    });
     // A particle that has lost the bonds spanning its neighbourhood has no
     // defined strain; report zero stress rather than a singular solve.
     const double scale = std::pow(K.trace() / D, D);

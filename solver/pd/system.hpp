@@ -1,12 +1,14 @@
 #pragma once
-// Everything a peridynamic force model acts on: particles, families, the bond
-// table and the per-bond broken flags.
+// Everything a peridynamic force model acts on: particles, families (built once
+// for the whole body), the bond table and the per-bond state; which particles
+// the PD force loops visit (owners) follows the particles' kinds.
 #include <algorithm>
 #include <cstdint>
 #include <vector>
 
 #include "solver/core/families.hpp"
 #include "solver/core/particles.hpp"
+#include "solver/pd/bond_state.hpp"
 #include "solver/pd/bond_table.hpp"
 #include "solver/pd/material.hpp"
 
@@ -19,7 +21,10 @@ struct System {
   core::Particles<D> particles;
   core::Families<D> families;
   BondTable<D> table;
-  std::vector<std::uint8_t> broken;  // per bond; 1 = μ = 0 for ever after
+  BondState bonds;
+  // Real particles whose bond loops run (PD-like kinds), in increasing order;
+  // empty when every real particle is PD (the kernels then visit all of them).
+  std::vector<Index> owners;
 
   Setting setting = Setting::solid3d;
   Elastic material;
@@ -35,8 +40,10 @@ struct System {
   Index n_real() const { return particles.n_real; }
 
   kernels::FamilyView family_view() {
-    return {families.n_owners(), particles.size(), families.offsets.data(), families.neighbor.data(),
-            families.shape.data(), broken.data()};
+    const bool all = owners.empty();
+    return {all ? families.n_owners() : static_cast<Index>(owners.size()), all ? nullptr : owners.data(),
+            particles.size(), families.offsets.data(), families.neighbor.data(), families.shape.data(),
+            bonds.kernel_flags()};
   }
 
   // Whether every particle (ghosts too) has the same volume, as on a lattice body.
@@ -45,11 +52,56 @@ struct System {
     return std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
   }
 
-  // Build families and the bond table for the current particles.
+  // Build families and the bond table for the whole body, once: later changes of
+  // particle kind change which bonds are live, never the families.
   void connect() {
     families = core::Families<D>::build(particles, family_ratio(partial_volume, delta, spacing()));
     table = BondTable<D>::build(families.stencil, spacing(), delta, influence, partial_volume);
-    broken.assign(families.n_bonds() + core::kBondPadding, 0);
+    bonds.reset(families.n_bonds(), core::kBondPadding);
+    refresh_activity();
+  }
+
+  // Kind of any particle, ghosts taking their owner's.
+  core::ParticleKind kind(Index j) const {
+    const auto& p = particles;
+    return p.kind[j < p.n_real ? j : p.ghost_owner[j - p.n_real]];
+  }
+
+  // Re-derives every bond's inactive bit and the owner list from the kinds;
+  // returns the real particles whose set of active bonds changed.
+  std::vector<Index> refresh_activity() {
+    const Index n = particles.n_real;
+    std::vector<Index> changed;
+    owners.clear();
+    bool all_pd = true;
+    for (Index i = 0; i < n; ++i) {
+      const auto ki = particles.kind[i];
+      bool moved = false;
+      for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
+        const bool active = bond_active(ki, kind(families.neighbor[b]));
+        moved = moved || active != !(bonds.flags.trial[b] & kBondInactive);
+        bonds.set_active(b, active);
+      }
+      if (moved) changed.push_back(i);
+      if (pd_like(ki)) owners.push_back(i);
+      all_pd = all_pd && ki == core::ParticleKind::pd;
+    }
+    if (all_pd) owners.clear();
+    return changed;
+  }
+
+  // Calls fn(b, j, k) for every live bond of particle i (intact, both ends
+  // PD-like; pd/bond_state.hpp): bond index, neighbour, stencil offset.
+  template <class Fn>
+  void for_each_live_bond(Index i, Fn&& fn) const {
+    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
+      if (bonds.live(b)) fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
+  }
+  // The same over i's reference family: active bonds not cut before the run.
+  template <class Fn>
+  void for_each_reference_bond(Index i, Fn&& fn) const {
+    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
+      if (bonds.in_reference_family(b)) fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
   }
 };
 

@@ -1,5 +1,5 @@
 #pragma once
-// Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j over intact bonds (SPEC §3)
+// Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j (SPEC §3)
 // and the dilatation θ_i = (d/m_i) Σ_j ω β |ξ| e V_j.
 #include <vector>
 
@@ -8,26 +8,32 @@
 
 namespace pdmpm::pd {
 
+// Over the live bonds (the current family).
 template <int D>
 double weighted_volume(const System<D>& sys, Index i) {
-  const auto& fam = sys.families;
   const auto& t = sys.table;
   double m = 0.0;
-  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-    if (sys.broken[b]) continue;
-    const int k = fam.shape[b];
-    m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[fam.neighbor[b]];
-  }
+  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
   return m;
 }
 
-// Weighted volume of every particle, ghosts copying their owner's.
+// Over the reference family: bonds broken during the run still count, so LPS's
+// m stays what it was at the start however particle kinds change.
 template <int D>
-std::vector<double> weighted_volumes(const System<D>& sys) {
+double reference_weighted_volume(const System<D>& sys, Index i) {
+  const auto& t = sys.table;
+  double m = 0.0;
+  sys.for_each_reference_bond(i, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
+  return m;
+}
+
+// Reference weighted volume of every particle, ghosts copying their owner's.
+template <int D>
+std::vector<double> reference_weighted_volumes(const System<D>& sys) {
   const auto& p = sys.particles;
   std::vector<double> m(p.size(), 0.0);
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p.n_real; ++i) m[i] = weighted_volume(sys, i);
+  for (Index i = 0; i < p.n_real; ++i) m[i] = reference_weighted_volume(sys, i);
   for (Index g = 0; g < p.n_ghost(); ++g) m[p.n_real + g] = m[p.ghost_owner[g]];
   return m;
 }
@@ -35,17 +41,13 @@ std::vector<double> weighted_volumes(const System<D>& sys) {
 template <int D>
 double dilatation_of(const System<D>& sys, Index i, double m_i) {
   if (m_i <= 0.0) return 0.0;
-  const auto& fam = sys.families;
   const auto& t = sys.table;
   const auto& p = sys.particles;
   double sum = 0.0;
-  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-    if (sys.broken[b]) continue;
-    const Index j = fam.neighbor[b];
-    const int k = fam.shape[b];
+  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
     const auto bond = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
     sum += t.weight[k] * t.length[k] * bond.e * p.volume[j];
-  }
+  });
   return D * sum / m_i;
 }
 

@@ -19,10 +19,10 @@
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/pd/stress.hpp"
-#include "solver/sim/dynamic_relaxation.hpp"
+#include "solver/time/dynamic_relaxation.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "solver/core/build_info.hpp"
 
@@ -33,7 +33,7 @@ template <int D>
 class PdRun {
  public:
   PdRun(const io::Scene& scene, PdSetup<D>& setup, const RunOptions& options)
-      : scene_(scene), s_(setup), p_(setup.system.particles), opt_(options), state_(setup) {}
+      : scene_(scene), s_(setup), p_(setup.system.particles), opt_(options), state_(make_simulation(setup)) {}
 
   RunResult run();
 
@@ -44,7 +44,7 @@ class PdRun {
   void history_row(std::int64_t step, double t);
   void frame(std::int64_t step, double t);
   void maybe_frame(std::int64_t step, double t);
-  bool stable(std::int64_t step, double t, const VerletStepper<D>& stepper);
+  bool stable(std::int64_t step, double t, const time::VelocityVerlet<D>& stepper);
   void verlet();
   void adr();
   nlohmann::json summary(double wall) const;
@@ -53,7 +53,7 @@ class PdRun {
   PdSetup<D>& s_;
   core::Particles<D>& p_;
   RunOptions opt_;
-  PdState<D> state_;
+  pd::Simulation<D> state_;
 
   double dt_ = 0.0, dt_sa_ = 0.0, dt_lanczos_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, history_every_ = 1, energy_every_ = 1;
@@ -64,7 +64,7 @@ class PdRun {
   // Energies of the last evaluation with energy, and the booked external work.
   double ke_ = 0.0, u_ = 0.0, e0_ = 0.0, work_ = 0.0;
   std::string status_ = "completed", message_;
-  RelaxationResult relax_;
+  time::RelaxationResult relax_;
 
   std::unique_ptr<io::OutputDirectory> out_;
   std::unique_ptr<io::HistoryWriter> history_;
@@ -239,7 +239,7 @@ void PdRun<D>::start_outputs() {
 }
 
 template <int D>
-bool PdRun<D>::stable(std::int64_t step, double t, const VerletStepper<D>& stepper) {
+bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>& stepper) {
   const double e = ke_ + u_;
   const double allowed =
       scene_.time.energy_growth_limit * (e0_ + stepper.absolute_work() + stepper.pending_work()) + 1e-200;
@@ -347,7 +347,7 @@ void PdRun<D>::maybe_frame(std::int64_t step, double t) {
 
 template <int D>
 void PdRun<D>::verlet() {
-  VerletStepper<D> stepper(state_, dt_);
+  time::VelocityVerlet<D> stepper(state_, dt_);
   stepper.start();
   ke_ = state_.kinetic_energy();
   u_ = state_.internal_energy();
@@ -377,11 +377,11 @@ void PdRun<D>::verlet() {
 
 template <int D>
 void PdRun<D>::adr() {
-  DynamicRelaxation<D> relax(state_);
+  time::DynamicRelaxation<D> relax(state_);
   s_.boundaries.apply_displacement(p_, 0.0, 0.0);
   p_.update_ghosts();
-  state_.external_forces(0.0);
-  state_.internal_forces(true);
+  state_.forces(0.0, true);
+  state_.accept();
   ke_ = 0.0;
   u_ = e0_ = state_.internal_energy();
   history_row(0, 0.0);

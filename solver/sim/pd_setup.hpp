@@ -15,6 +15,7 @@
 #include "solver/pd/contact.hpp"
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/model.hpp"
+#include "solver/pd/simulation.hpp"
 #include "solver/sim/probes.hpp"
 
 namespace pdmpm::sim {
@@ -37,7 +38,24 @@ struct PdSetup {
   std::optional<pd::CrackSettings> crack;
   std::vector<pd::NamedLocation<D>> locations;
   std::vector<std::uint8_t> crack_exclude;  // per real particle: in a region excluded from crack detection
+
+  // What acts on the body besides its bonds, for a pd::Simulation.
+  pd::Forcing<D> forcing() {
+    pd::Forcing<D> f;
+    f.boundaries = &boundaries;
+    f.body_force = has_body_force ? &body_force : nullptr;
+    f.indenter = indenter ? &*indenter : nullptr;
+    f.contact = contact ? &*contact : nullptr;
+    f.breaking = {damage, critical_stretch, break_after_force};
+    return f;
+  }
 };
+
+// The body of a setup in motion.
+template <int D>
+pd::Simulation<D> make_simulation(PdSetup<D>& s) {
+  return pd::Simulation<D>(s.system, *s.model, s.forcing());
+}
 
 template <int D>
 PdSetup<D> build_pd(const io::Scene& scene);

@@ -11,7 +11,8 @@ namespace pdmpm::time {
 template <int D>
 double silling_askari_step(const pd::System<D>& sys, const pd::Model<D>& model, double extra_row_sum) {
   double worst = 0.0;
-  for (Index i = 0; i < sys.n_real(); ++i) worst = std::max(worst, model.stiffness_row_sum(sys, i));
+  for (Index i = 0; i < sys.n_real(); ++i)
+    if (sys.particles.kind[i] == core::ParticleKind::pd) worst = std::max(worst, model.stiffness_row_sum(sys, i));
   worst += extra_row_sum;
   if (!(worst > 0.0)) return std::numeric_limits<double>::infinity();
   return std::sqrt(2.0 * sys.material.rho / worst);
@@ -25,9 +26,9 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   if (n == 0) return res;
   const auto u0 = p.u;
   const auto f_saved = p.f;
-  const auto broken0 = sys.broken;
   const double rho = sys.material.rho;
 
+  // The probing evaluations ask for no bond breaking, so the bond state is untouched.
   model.compute_forces(sys, {});
   const std::vector<Vec<D>> f0 = p.f;
   // A x = M⁻¹K x from a force evaluation at a small displacement along x
@@ -88,7 +89,6 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   p.u = u0;
   p.update_ghosts();
   p.f = f_saved;
-  sys.broken = broken0;
   if (!(lambda > 0.0) || !std::isfinite(lambda)) throw RunError("stable step: the Lanczos iteration found no positive stiffness");
   res.lambda_max = lambda;
   res.dt = 2.0 / std::sqrt(lambda);

@@ -1,6 +1,6 @@
 #pragma once
 // Critical time step of explicit central differences for a PD body.
-//  silling_askari  Δt = min_i sqrt(2ρ / Σ_j V_j C_ij)  (Silling & Askari 2005):
+//  silling_askari  Δt = min_i sqrt(2ρ / Σ_j V_j C_ij) over the PD particles (Silling & Askari 2005):
 //                  a Gershgorin-type bound, so never above the true limit.
 //  lanczos         Δt = 2 / sqrt(λ_max(M⁻¹K)), λ_max by the Lanczos method on the
 //                  force operator linearised about the current state: the

@@ -28,8 +28,7 @@
 #include "solver/pd/constants.hpp"
 #include "solver/pd/lps.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "verification/support/gate.hpp"
 
@@ -83,7 +82,7 @@ bool absolute_pair_sums(sim::PdSetup<D>& s, std::vector<double>& A) {
     const double c = pd::pmb_micromodulus(sys.influence, sys.setting, sys.material, sys.delta, sys.measure);
     for (Index i = 0; i < p.n_real; ++i)
       for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-        if (sys.broken[b]) continue;
+        if (!sys.bonds.live(b)) continue;
         const int k = fam.shape[b];
         const Index j = fam.neighbor[b];
         const auto bond = pd::deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
@@ -101,7 +100,7 @@ bool absolute_pair_sums(sim::PdSetup<D>& s, std::vector<double>& A) {
     const auto k = pd::lps_coefficients(sys.setting, sys.material);
     for (Index i = 0; i < p.n_real; ++i)
       for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-        if (sys.broken[b]) continue;
+        if (!sys.bonds.live(b)) continue;
         const int s2 = fam.shape[b];
         const Index j = fam.neighbor[b];
         const double L = t.length[s2];
@@ -158,9 +157,9 @@ MomentumRun momentum_run(const std::string& model, bool spin, int steps, std::ve
       p.v[i][0] += V * std::tanh((x[0] - xc) / 2e-3);
     }
   }
-  sim::PdState<D> st(setup);
+  auto st = sim::make_simulation(setup);
   const double dt = 0.8 * time::silling_askari_step<D>(setup.system, *setup.model);
-  sim::VerletStepper<D> stepper(st, dt);
+  time::VelocityVerlet<D> stepper(st, dt);
   stepper.start();
   const double rho = st.density();
   const int nb = max_family(setup.system);
@@ -296,10 +295,10 @@ void energy_gates() {
       const Vec<D> x = p.x0[i] / 1e-3;
       for (int c = 0; c < D; ++c) p.v[i][c] = a * std::sin(0.31 * x[(c + 1) % D] + 0.7 * c) * std::cos(0.23 * x[c]);
     }
-    sim::PdState<D> st(setup);
+    auto st = sim::make_simulation(setup);
     const auto lz = time::lanczos_step<D>(setup.system, *setup.model);
     const double dt = 0.8 * lz.dt;
-    sim::VerletStepper<D> stepper(st, dt);
+    time::VelocityVerlet<D> stepper(st, dt);
     stepper.start();
     const double rho = st.density();
     auto shadow_term = [&] {

@@ -26,8 +26,7 @@
 #include "solver/pd/bond_table.hpp"
 #include "solver/pd/constants.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/patch_check.hpp"
@@ -155,8 +154,8 @@ double measure_omega2(Slab<D>& sl, int n, int steps, std::vector<double>* amplit
     for (Index i = 0; i < p.n_real; ++i) s += p.volume[i] * p.u[i][0] * std::sin(k * p.x0[i][0]);
     return s / norm;
   };
-  sim::PdState<D> st(sl.setup);
-  sim::VerletStepper<D> stepper(st, sl.dt);
+  auto st = sim::make_simulation(sl.setup);
+  time::VelocityVerlet<D> stepper(st, sl.dt);
   stepper.start();
   std::vector<double> a{amp()};
   for (int j = 0; j < steps; ++j) {

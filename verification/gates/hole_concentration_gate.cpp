@@ -44,9 +44,8 @@
 #include "solver/analytic/kirsch.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/pd/stress.hpp"
-#include "solver/sim/dynamic_relaxation.hpp"
+#include "solver/time/dynamic_relaxation.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
 #include "verification/support/convergence_fit.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/speed_accuracy.hpp"
@@ -97,8 +96,8 @@ Level solve(int n, double m = ratio, std::optional<pd::Influence> influence = st
   top.layer = lv.dx;
   const double t0 = omp_get_wtime();
   auto setup = sim::build_pd<2>(s);
-  sim::PdState<2> st(setup);
-  sim::DynamicRelaxation<2> relax(st);
+  auto st = sim::make_simulation(setup);
+  time::DynamicRelaxation<2> relax(st);
   const auto res = relax.solve(1.0, tolerance, 4000000);
   EXPECT_TRUE(res.converged) << "a/Δx = " << n;
   lv.iterations = res.iterations;
@@ -144,8 +143,8 @@ Surface surface_factor() {
     << " { type = \"box\", min = [0.0, " << side - 3 * delta << "], max = [" << side << ", " << side << "] }]\n";
   const auto s = io::parse_scene_text(t.str(), "surface_effect");
   auto setup = sim::build_pd<2>(s);
-  sim::PdState<2> st(setup);
-  sim::DynamicRelaxation<2> relax(st);
+  auto st = sim::make_simulation(setup);
+  time::DynamicRelaxation<2> relax(st);
   EXPECT_TRUE(relax.solve(1.0, 1e-9, 1000000).converged);
   const auto stress = pd::particle_stress<2>(setup.system);
   const auto& p = setup.system.particles;

@@ -20,8 +20,7 @@
 #include "solver/io/scene.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/lammps.hpp"
 #include "verification/support/raster_image.hpp"
@@ -57,8 +56,8 @@ struct OneThread {
 OurRun run_ours(const io::Scene& scene, std::int64_t steps, double dt) {
   const OneThread one;
   auto setup = sim::build_pd<3>(scene);
-  sim::PdState<3> state(setup);
-  sim::VerletStepper<3> stepper(state, dt);
+  auto state = sim::make_simulation(setup);
+  time::VelocityVerlet<3> stepper(state, dt);
   stepper.start();
   const auto t0 = std::chrono::steady_clock::now();
   for (std::int64_t s = 0; s < steps; ++s) stepper.step(false);
@@ -69,7 +68,7 @@ OurRun run_ours(const io::Scene& scene, std::int64_t steps, double dt) {
   r.v.assign(p.v.begin(), p.v.begin() + p.n_real);
   r.damage = pd::local_damage(setup.system);
   r.sides = setup.system.families.n_bonds();
-  for (auto b : setup.system.broken) r.broken_sides += b;
+  for (BondIndex b = 0; b < setup.system.families.n_bonds(); ++b) r.broken_sides += setup.system.bonds.broken(b);
   return r;
 }
 

@@ -30,8 +30,7 @@
 #include "solver/analytic/spherical_wave.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "verification/support/pd_fixtures.hpp"
 
@@ -271,8 +270,8 @@ inline Result run(const Case& c, const Config& cfg) {
   // Δt divides the period, so every sample time (a multiple of T/…) is hit exactly.
   const auto per_period = static_cast<long long>(std::ceil(period / (cfg.safety * res.dt_stable)));
   res.dt = period / static_cast<double>(per_period);
-  sim::PdState<3> st(setup);
-  sim::VerletStepper<3> stepper(st, res.dt);
+  auto st = sim::make_simulation(setup);
+  time::VelocityVerlet<3> stepper(st, res.dt);
   stepper.start();
   const double t1 = omp_get_wtime();
   res.setup_seconds = t1 - t_build;

@@ -11,8 +11,7 @@
 #include "solver/io/scene.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/sim/pd_setup.hpp"
-#include "solver/sim/pd_state.hpp"
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "verification/support/gate.hpp"
 
@@ -61,8 +60,8 @@ Snapshot<D> run(const std::string& model, int threads, int steps) {
   s.dt_lanczos = time::lanczos_step<D>(setup.system, *setup.model).dt;
   const double dt = 0.8 * time::silling_askari_step<D>(setup.system, *setup.model,
                                                        setup.contact->stiffness_row_sum(setup.system));
-  sim::PdState<D> st(setup);
-  sim::VerletStepper<D> stepper(st, dt);
+  auto st = sim::make_simulation(setup);
+  time::VelocityVerlet<D> stepper(st, dt);
   stepper.start();
   for (int k = 0; k < steps; ++k) {
     stepper.step(k % 10 == 0);
@@ -71,7 +70,7 @@ Snapshot<D> run(const std::string& model, int threads, int steps) {
   s.u.assign(p.u.begin(), p.u.begin() + p.n_real);
   s.v.assign(p.v.begin(), p.v.begin() + p.n_real);
   s.f.assign(p.f.begin(), p.f.begin() + p.n_real);
-  s.broken = setup.system.broken;
+  s.broken = setup.system.bonds.flags.trial;
   s.damage = pd::local_damage(setup.system);
   s.broken_bonds = st.broken_bonds();
   return s;

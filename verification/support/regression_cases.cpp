@@ -50,7 +50,7 @@ Result compute_dim(const Case& c) {
       const Vec<D> xj = p.x0[sys.families.neighbor[b]];
       const bool crosses = (p.x0[i][0] - xc) * (xj[0] - xc) < 0.0;
       const bool on_crack = D == 1 || 0.5 * (p.x0[i][1 % D] + xj[1 % D]) < 4.0 * dx;
-      if (crosses && on_crack) sys.broken[b] = 1, ++r.broken_bond_sides;
+      if (crosses && on_crack) sys.bonds.cut(b), ++r.broken_bond_sides;
     }
   auto model = pd::make_model<D>(c.model);
   model->initialise(sys);

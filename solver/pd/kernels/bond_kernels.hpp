@@ -31,12 +31,15 @@ struct BondShapeTable {
 // Bond arrays (neighbor, shape, broken) are padded with `lanes` entries past the
 // last bond (core::Families, pd::System), so a block may read 8 entries anywhere.
 struct FamilyView {
-  Index n_owners;
+  Index n_owners;           // particles visited
+  const Index* owner;       // their indices, increasing (nullptr: 0 … n_owners − 1)
   Index n_sites;            // particles a neighbour index may name (real + ghosts): the extent of u
   const BondIndex* offsets;
   const Index* neighbor;
   const std::uint16_t* shape;
-  std::uint8_t* broken;
+  std::uint8_t* broken;      // per-bond flags (pd/bond_state.hpp): live when 0; a new break sets 1
+
+  Index particle(Index k) const { return owner ? owner[k] : k; }
 };
 
 struct PmbArgs {

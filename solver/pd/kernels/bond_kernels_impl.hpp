@@ -159,7 +159,8 @@ std::int64_t pmb(const PmbArgs& a) {
   const double s0 = a.s0, c = a.c;
   std::int64_t newly = 0;
 #pragma omp parallel for schedule(static) reduction(+ : newly)
-  for (Index i = 0; i < fam.n_owners; ++i) {
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
     d8 acc[D], w = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;
@@ -189,7 +190,8 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
   const double s0 = a.s0;
   std::int64_t newly = 0;
 #pragma omp parallel for schedule(static) reduction(+ : newly)
-  for (Index i = 0; i < fam.n_owners; ++i) {
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
     d8 acc = splat(0.0);
     Block<D> B;
     for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
@@ -213,7 +215,8 @@ std::int64_t lps_forces(const LpsArgs& a) {
   const m8 breaking = a.breaking && a.after_force ? m8{} - 1 : m8{};
   std::int64_t newly = 0;
 #pragma omp parallel for schedule(static) reduction(+ : newly)
-  for (Index i = 0; i < fam.n_owners; ++i) {
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
     d8 acc[D], dev = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;

@@ -30,10 +30,10 @@ Index at(const System<2>& sys, double x, double y) {
 void detach(System<2>& sys, Index i) {
   const auto& fam = sys.families;
   for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-    sys.broken[b] = 1;
+    sys.bonds.cut(b);
     const Index j = fam.neighbor[b];
     for (BondIndex c = fam.begin(j); c < fam.end(j); ++c)
-      if (fam.neighbor[c] == i) sys.broken[c] = 1;
+      if (fam.neighbor[c] == i) sys.bonds.cut(c);
   }
 }
 

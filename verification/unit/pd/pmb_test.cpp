@@ -52,7 +52,7 @@ TEST(Pmb, BondsBreakOnBothSidesAtTheSameStep) {
       const Index j = sys.families.neighbor[b];
       for (BondIndex c = sys.families.begin(j); c < sys.families.end(j); ++c)
         if (sys.families.neighbor[c] == i) {
-          EXPECT_EQ(sys.broken[b], sys.broken[c]);
+          EXPECT_EQ(sys.bonds.broken(b), sys.bonds.broken(c));
         }
     }
 }

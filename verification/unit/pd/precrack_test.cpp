@@ -21,7 +21,7 @@ TEST(Precrack, SegmentCutsExactlyTheCrossingBonds2D) {
   for (Index i = 0; i < sys.n_real(); ++i)
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
       const double xi = sys.particles.x0[i][0], xj = sys.particles.x0[sys.families.neighbor[b]][0];
-      EXPECT_EQ(sys.broken[b] != 0, (xi < 4.5) != (xj < 4.5));
+      EXPECT_EQ(sys.bonds.broken(b), (xi < 4.5) != (xj < 4.5));
     }
 }
 
@@ -35,7 +35,7 @@ TEST(Precrack, ParticleOnTheCrackLineKeepsOneSide) {
   cut_bonds<2>(sys, crack);
   for (Index i = 0; i < sys.n_real(); ++i) {
     BondIndex intact = 0;
-    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) intact += !sys.broken[b];
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) intact += !sys.bonds.broken(b);
     EXPECT_GT(intact, 0) << "particle " << i << " lost every bond";
   }
 }
@@ -50,7 +50,7 @@ TEST(Precrack, FiniteSegmentOnlyCutsNearIt) {
   cut_bonds<2>(sys, crack);
   for (Index i = 0; i < sys.n_real(); ++i)
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
-      if (sys.broken[b]) {
+      if (sys.bonds.broken(b)) {
         const Vec<2> mid = 0.5 * (sys.particles.x0[i] + sys.particles.x0[sys.families.neighbor[b]]);
         EXPECT_LT(std::abs(mid[1] - 9.5), 3.0);
       }
@@ -66,7 +66,7 @@ TEST(Precrack, PlaneCutsBonds3D) {
   for (Index i = 0; i < sys.n_real(); ++i)
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
       const double xi = sys.particles.x0[i][0], xj = sys.particles.x0[sys.families.neighbor[b]][0];
-      EXPECT_EQ(sys.broken[b] != 0, (xi < 3.5) != (xj < 3.5));
+      EXPECT_EQ(sys.bonds.broken(b), (xi < 3.5) != (xj < 3.5));
     }
 }
 

@@ -58,7 +58,7 @@ struct Body {
       }
       if (!uniform_volume) p.volume[i] *= 1.0 + 0.01 * (i % 5);
     }
-    for (BondIndex b = 0; b < sys.families.n_bonds(); b += 7) sys.broken[b] = 1;  // pre-cut bonds
+    for (BondIndex b = 0; b < sys.families.n_bonds(); b += 7) sys.bonds.cut(b);  // pre-cut bonds
     const auto n = static_cast<std::size_t>(p.size());
     m.resize(n);
     alpha_beta.resize(2 * n);
@@ -113,7 +113,7 @@ struct Body {
     o.f.assign(D * sys.particles.size(), 0.0);
     o.energy.assign(sys.particles.size(), 0.0);
     o.theta.assign(sys.particles.size(), 0.0);
-    o.broken = sys.broken;
+    o.broken = sys.bonds.flags.trial;
     return o;
   }
 

@@ -1,10 +1,11 @@
-#include "solver/sim/dynamic_relaxation.hpp"
+#include "solver/time/dynamic_relaxation.hpp"
+#include "solver/sim/pd_setup.hpp"
 
 #include <gtest/gtest.h>
 
 #include "solver/io/scene.hpp"
 
-namespace pdmpm::sim {
+namespace pdmpm::time {
 namespace {
 
 // A bar (1D PMB, no partial volumes) fixed at the left end with an end traction
@@ -42,9 +43,9 @@ value = [1e6]
 layer = 1e-3
 region = { type = "box", min = [0.0995], max = [0.1] }
 )", "bar.toml");
-  auto setup = build_pd<1>(scene);
-  PdState<1> st(setup);
-  DynamicRelaxation<1> relax(st);
+  auto setup = sim::build_pd<1>(scene);
+  auto st = sim::make_simulation(setup);
+  time::DynamicRelaxation<1> relax(st);
   const auto r = relax.solve(1.0, 1e-9, 200000);
   ASSERT_TRUE(r.converged) << "residual " << r.residual << " after " << r.iterations;
   // Strain from two interior particles far from both ends.
@@ -66,4 +67,4 @@ region = { type = "box", min = [0.0995], max = [0.1] }
 }
 
 }  // namespace
-}  // namespace pdmpm::sim
+}  // namespace pdmpm::time

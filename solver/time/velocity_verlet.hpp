@@ -1,17 +1,20 @@
 #pragma once
-// Velocity Verlet (central difference, seed 004 eq 45) for a PD body:
-//   v += ½Δt (f + b)/ρ;  velocity BCs at t + ½Δt;  u += Δt v;  displacement BCs at t + Δt;
-//   forces at t + Δt;  v += ½Δt (f + b)/ρ;  velocity BCs at t + Δt.
+// Velocity Verlet (central difference; Gu & Zhou 2017 eq 45) for a PD body:
+//   kick ½Δt;  velocity BCs at t + ½Δt;  drift Δt;  displacement BCs at t + Δt;
+//   forces at t + Δt;  kick ½Δt;  velocity BCs at t + Δt;  accept the bond state.
 // Keeps the work done by external forces and supports, so energy balance and
 // instability can be judged.
-#include "solver/sim/pd_state.hpp"
+#include <utility>
+#include <vector>
 
-namespace pdmpm::sim {
+#include "solver/pd/simulation.hpp"
+
+namespace pdmpm::time {
 
 template <int D>
-class VerletStepper {
+class VelocityVerlet {
  public:
-  VerletStepper(PdState<D>& state, double dt);
+  VelocityVerlet(pd::Simulation<D>& sim, double dt);
 
   // Applies the t = 0 boundary conditions and evaluates the first forces.
   void start();
@@ -29,13 +32,15 @@ class VerletStepper {
   double pending_work() const;
 
  private:
-  PdState<D>& st_;
+  void book_work();
+
+  pd::Simulation<D>& sim_;
   double dt_;
   std::int64_t steps_ = 0;
   double e0_ = 0.0, work_ = 0.0, work_abs_ = 0.0;
-  std::vector<std::pair<Index, int>> held_;
+  std::vector<std::pair<Index, int>> held_;  // supported (particle, component) pairs
   std::vector<double> held_f_, held_v_;
   std::vector<Vec<D>> u_old_, b_old_;
 };
 
-}  // namespace pdmpm::sim
+}  // namespace pdmpm::time

@@ -1,37 +1,37 @@
-#include "solver/sim/dynamic_relaxation.hpp"
+#include "solver/time/dynamic_relaxation.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace pdmpm::sim {
+namespace pdmpm::time {
 
 template <int D>
-DynamicRelaxation<D>::DynamicRelaxation(PdState<D>& state) : st_(state) {
-  auto& s = st_.setup();
-  const Index n = s.system.particles.n_real;
-  const double contact = s.contact ? s.contact->stiffness_row_sum(s.system) : 0.0;
+DynamicRelaxation<D>::DynamicRelaxation(pd::Simulation<D>& sim) : sim_(sim) {
+  const auto& sys = sim_.system();
+  const Index n = sys.particles.n_real;
+  const auto* contact_model = sim_.forcing().contact;
+  const double contact = contact_model ? contact_model->stiffness_row_sum(sys) : 0.0;
   lambda_.resize(n);
   // λ_i ≥ ¼ Σ_j |K_ij| (Δt = 1); the row sum bounds Σ_j |K_ij| / 2, and 0.625 = ¼·2·1.25 adds a margin.
-  for (Index i = 0; i < n; ++i) lambda_[i] = 0.625 * (s.model->stiffness_row_sum(s.system, i) + contact) + 1e-300;
+  for (Index i : sim_.movers()) lambda_[i] = 0.625 * (sim_.model().stiffness_row_sum(sys, i) + contact) + 1e-300;
   vhalf_.assign(n, Vec<D>::Zero());
   fprev_.assign(n, Vec<D>::Zero());
 }
 
 template <int D>
 RelaxationResult DynamicRelaxation<D>::solve(double t, double tolerance, std::int64_t max_iterations) {
-  auto& p = st_.particles();
-  const auto& bcs = st_.setup().boundaries;
+  auto& p = sim_.particles();
+  const auto& bcs = sim_.boundaries();
   const auto& mask = bcs.mask();
-  const Index n = p.n_real;
   RelaxationResult res;
   for (auto& v : vhalf_) v.setZero();
   for (std::int64_t it = 0; it < max_iterations; ++it) {
     bcs.apply_displacement(p, t, 0.0);
     p.update_ghosts();
-    st_.external_forces(t);
-    st_.internal_forces(false);
+    sim_.forces(t, false);
+    sim_.accept();
     double r2 = 0.0, scale2 = 0.0, num = 0.0, den = 0.0;
-    for (Index i = 0; i < n; ++i)
+    for (Index i : sim_.movers())
       for (int a = 0; a < D; ++a) {
         const double F = p.f[i][a] + p.b[i][a], V = p.volume[i];
         if (mask[static_cast<std::size_t>(i) * D + a]) {
@@ -50,7 +50,7 @@ RelaxationResult DynamicRelaxation<D>::solve(double t, double tolerance, std::in
       break;
     }
     const double c = (it > 0 && num > 0.0 && den > 0.0) ? std::min(2.0 * std::sqrt(num / den), 1.999) : 0.0;
-    for (Index i = 0; i < n; ++i)
+    for (Index i : sim_.movers())
       for (int a = 0; a < D; ++a) {
         if (mask[static_cast<std::size_t>(i) * D + a]) continue;
         const double F = p.f[i][a] + p.b[i][a];
@@ -60,8 +60,9 @@ RelaxationResult DynamicRelaxation<D>::solve(double t, double tolerance, std::in
       }
     if (!std::isfinite(res.residual)) break;
   }
-  for (Index i = 0; i < n; ++i) p.v[i].setZero();
-  st_.internal_forces(true);
+  for (Index i : sim_.movers()) p.v[i].setZero();
+  sim_.internal_forces(true);
+  sim_.accept();
   return res;
 }
 
@@ -69,4 +70,4 @@ template class DynamicRelaxation<1>;
 template class DynamicRelaxation<2>;
 template class DynamicRelaxation<3>;
 
-}  // namespace pdmpm::sim
+}  // namespace pdmpm::time

@@ -3,9 +3,10 @@
 // pseudo-time Δt = 1, a diagonal fictitious density λ_i from the stiffness
 // row sum (large enough for stability), and the damping coefficient
 // c = 2 sqrt(uᵀ ¹K u / uᵀu) from the local diagonal stiffness estimate.
-#include "solver/sim/pd_state.hpp"
+// Every iteration's bond state is accepted (bonds broken while relaxing stay broken).
+#include "solver/pd/simulation.hpp"
 
-namespace pdmpm::sim {
+namespace pdmpm::time {
 
 struct RelaxationResult {
   bool converged = false;
@@ -16,14 +17,14 @@ struct RelaxationResult {
 template <int D>
 class DynamicRelaxation {
  public:
-  explicit DynamicRelaxation(PdState<D>& state);
+  explicit DynamicRelaxation(pd::Simulation<D>& sim);
   // Relaxes to equilibrium at load factor t (the `t` of the scene's expressions).
   RelaxationResult solve(double t, double tolerance, std::int64_t max_iterations);
 
  private:
-  PdState<D>& st_;
+  pd::Simulation<D>& sim_;
   std::vector<double> lambda_;
   std::vector<Vec<D>> vhalf_, fprev_;
 };
 
-}  // namespace pdmpm::sim
+}  // namespace pdmpm::time

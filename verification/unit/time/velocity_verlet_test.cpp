@@ -1,4 +1,5 @@
-#include "solver/sim/verlet.hpp"
+#include "solver/time/velocity_verlet.hpp"
+#include "solver/sim/pd_setup.hpp"
 
 #include <gtest/gtest.h>
 
@@ -7,7 +8,7 @@
 #include "solver/io/scene.hpp"
 #include "solver/time/stable_step.hpp"
 
-namespace pdmpm::sim {
+namespace pdmpm::time {
 namespace {
 
 io::Scene free_plate(const std::string& extra = "") {
@@ -40,18 +41,18 @@ steps = 1
 // and the total energy oscillates within a small bound (no drift).
 TEST(Verlet, FreeVibrationConservesMomentumAndEnergy) {
   const auto scene = free_plate();
-  auto setup = build_pd<2>(scene);
+  auto setup = sim::build_pd<2>(scene);
   auto& p = setup.system.particles;
   for (Index i = 0; i < p.n_real; ++i) {
     const Vec<2> x = p.x0[i];
     p.v[i] = Vec<2>(std::sin(200 * x[1]), std::cos(150 * x[0])) * 0.1;
   }
-  PdState<2> st(setup);
+  auto st = sim::make_simulation(setup);
   // Remove the initial momentum so "conserved" means "stays zero".
   const Vec<2> m0 = st.momentum() / (st.density() * p.n_real * p.volume[0]);
   for (Index i = 0; i < p.n_real; ++i) p.v[i] -= m0;
   const double dt = 0.8 * time::lanczos_step<2>(setup.system, *setup.model).dt;
-  VerletStepper<2> stepper(st, dt);
+  time::VelocityVerlet<2> stepper(st, dt);
   stepper.start();
   const double e0 = stepper.initial_energy();
   double emin = e0, emax = e0, pmax = 0.0;
@@ -79,10 +80,10 @@ region = { type = "box", min = [0.0295, 0], max = [0.03, 0.015] }
 kind = "fixed"
 region = { type = "box", min = [0, 0], max = [0.0005, 0.015] }
 )");
-  auto setup = build_pd<2>(scene);
-  PdState<2> st(setup);
+  auto setup = sim::build_pd<2>(scene);
+  auto st = sim::make_simulation(setup);
   const double dt = 0.8 * time::silling_askari_step<2>(setup.system, *setup.model);
-  VerletStepper<2> stepper(st, dt);
+  time::VelocityVerlet<2> stepper(st, dt);
   stepper.start();
   for (int k = 0; k < 400; ++k) stepper.step(k == 399);
   const double e = st.kinetic_energy() + st.internal_energy();
@@ -93,4 +94,4 @@ region = { type = "box", min = [0, 0], max = [0.0005, 0.015] }
 }
 
 }  // namespace
-}  // namespace pdmpm::sim
+}  // namespace pdmpm::time
