@@ -27,6 +27,9 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   const auto u0 = p.u;
   const auto f_saved = p.f;
   const double rho = sys.material.rho;
+  // Only PD particles move in the probe: the others (MPM, transition) are held,
+  // as the grid, not PD, integrates them.
+  auto is_pd = [&](Index i) { return p.kind[i] == core::ParticleKind::pd; };
 
   // The probing evaluations ask for no bond breaking, so the bond state is untouched.
   model.compute_forces(sys, {});
@@ -45,7 +48,7 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
     for (Index i = 0; i < n; ++i) p.u[i] = u0[i] + (amplitude / scale) * x[i];
     p.update_ghosts();
     model.compute_forces(sys, {});
-    for (Index i = 0; i < n; ++i) y[i] = -(p.f[i] - f0[i]) * (scale / amplitude) / rho;
+    for (Index i = 0; i < n; ++i) y[i] = is_pd(i) ? Vec<D>(-(p.f[i] - f0[i]) * (scale / amplitude) / rho) : Vec<D>::Zero();
   };
 
   // Start from the checkerboard (the highest lattice frequency) plus a small
@@ -53,7 +56,8 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   std::vector<Vec<D>> v(n), v_prev(n, Vec<D>::Zero()), w(n);
   for (Index i = 0; i < n; ++i) {
     const int parity = p.site[i].sum() & 1;
-    for (int a = 0; a < D; ++a) v[i][a] = (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * i + a);
+    for (int a = 0; a < D; ++a)
+      v[i][a] = is_pd(i) ? (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * i + a) : 0.0;
   }
   double norm = std::sqrt(dot(v, v));
   for (auto& x : v) x /= norm;
