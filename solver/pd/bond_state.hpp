@@ -27,6 +27,10 @@ inline constexpr std::uint8_t kBondBroken = 1;
 inline constexpr std::uint8_t kBondInactive = 2;
 inline constexpr std::uint8_t kBondCut = 4;
 
+// Which bonds of a family a sum runs over: the live ones (what acts now), or
+// the reference family (what LPS's weighted volume is built on).
+enum class BondSet { live, reference };
+
 // A particle takes part in PD bonds when it is PD, or a transition particle (an
 // MPM particle inside a PD particle's horizon, a virtual PD particle).
 inline bool pd_like(core::ParticleKind k) { return k != core::ParticleKind::mpm; }

@@ -40,7 +40,7 @@ void Lps<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
   // The continuum weighted volume does not depend on which bonds are live.
   if (sys.continuum_weighted_volume) return;
   const auto& p = sys.particles;
-  for (Index i : changed) set_weighted_volume(i, reference_weighted_volume(sys, i));
+  for (Index i : changed) set_weighted_volume(i, pd::weighted_volume(sys, i, BondSet::reference));
   for (Index g = 0; g < p.n_ghost(); ++g) set_weighted_volume(p.n_real + g, m_[p.ghost_owner[g]]);
 }
 

@@ -90,18 +90,18 @@ struct System {
     return changed;
   }
 
-  // Calls fn(b, j, k) for every live bond of particle i (intact, both ends
-  // PD-like; pd/bond_state.hpp): bond index, neighbour, stencil offset.
+  // Calls fn(b, j, k) — bond index, neighbour, stencil offset — for every bond
+  // of particle i in the set (pd/bond_state.hpp): live (intact, both ends
+  // PD-like) or the reference family (active, not cut before the run).
+  template <class Fn>
+  void for_each_bond(Index i, BondSet set, Fn&& fn) const {
+    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
+      if (set == BondSet::live ? bonds.live(b) : bonds.in_reference_family(b))
+        fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
+  }
   template <class Fn>
   void for_each_live_bond(Index i, Fn&& fn) const {
-    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
-      if (bonds.live(b)) fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
-  }
-  // The same over i's reference family: active bonds not cut before the run.
-  template <class Fn>
-  void for_each_reference_bond(Index i, Fn&& fn) const {
-    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
-      if (bonds.in_reference_family(b)) fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
+    for_each_bond(i, BondSet::live, fn);
   }
 };
 

@@ -8,22 +8,14 @@
 
 namespace pdmpm::pd {
 
-// Over the live bonds (the current family).
+// Over the live bonds (the current family), or over the reference family, in
+// which bonds broken during the run still count: LPS's m stays what it was at
+// the start however particle kinds change.
 template <int D>
-double weighted_volume(const System<D>& sys, Index i) {
+double weighted_volume(const System<D>& sys, Index i, BondSet set = BondSet::live) {
   const auto& t = sys.table;
   double m = 0.0;
-  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
-  return m;
-}
-
-// Over the reference family: bonds broken during the run still count, so LPS's
-// m stays what it was at the start however particle kinds change.
-template <int D>
-double reference_weighted_volume(const System<D>& sys, Index i) {
-  const auto& t = sys.table;
-  double m = 0.0;
-  sys.for_each_reference_bond(i, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
+  sys.for_each_bond(i, set, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
   return m;
 }
 
@@ -33,7 +25,7 @@ std::vector<double> reference_weighted_volumes(const System<D>& sys) {
   const auto& p = sys.particles;
   std::vector<double> m(p.size(), 0.0);
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p.n_real; ++i) m[i] = reference_weighted_volume(sys, i);
+  for (Index i = 0; i < p.n_real; ++i) m[i] = weighted_volume(sys, i, BondSet::reference);
   for (Index g = 0; g < p.n_ghost(); ++g) m[p.n_real + g] = m[p.ghost_owner[g]];
   return m;
 }
