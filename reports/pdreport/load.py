@@ -15,6 +15,8 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from .bibliography import Reference, cited_keys, load_bibliography
+
 PASS, FAIL, MALFORMED, MISSING, OK = "PASS", "FAIL", "MALFORMED", "MISSING", "OK"
 # A gate its problem says another command records (the full tier, ci/bench.sh), absent
 # from these results: shown, counted apart, not an issue.
@@ -140,6 +142,16 @@ class Results:
     problems: list[Problem] = field(default_factory=list)
     bench: list[BenchFile] = field(default_factory=list)
     issues: list[Issue] = field(default_factory=list)
+    references: dict[str, Reference] = field(default_factory=dict)  # the bibliography, by key
+
+    def cited(self) -> list[Reference]:
+        """The works the page cites (gate sources, problem texts), in bibliography order."""
+        keys = set()
+        for g in self.gates:
+            keys.update(cited_keys(g.source))
+        for p in self.problems:
+            keys.update(cited_keys(p.summary + " ".join(p.equations)))
+        return [ref for key, ref in self.references.items() if key in keys]
 
     def count(self, status: str) -> int:
         return sum(1 for g in self.gates if g.status == status)
@@ -500,7 +512,42 @@ def json_files(directory: Path) -> list[Path]:
     return sorted(p for p in directory.iterdir() if p.suffix == ".json" and not p.name.startswith("."))
 
 
-def load_results(root: Path, problems_dir: Path) -> Results:
+def check_citations(results: Results, references_path: Path) -> None:
+    """Every gate's source names a bibliography key, and every key cited anywhere exists."""
+    def issue(status: str, path: str, message: str) -> None:
+        results.issues.append(Issue(status, path, message))
+
+    try:
+        results.references = load_bibliography(references_path)
+    except (OSError, UnicodeDecodeError) as e:
+        issue(MISSING, str(references_path), f"no bibliography ({getattr(e, 'strerror', None) or e}); "
+              "citations are not checked")
+        return
+    for g in results.gates:
+        if g.status not in (PASS, FAIL):  # unreadable, or not recorded here: said already
+            continue
+        keys = cited_keys(g.source)
+        if not keys:
+            issue(MALFORMED, g.file, f'"source" names no bibliography key ([key] of {references_path.name}): '
+                  f"{g.source[:80]!r}")
+        for key in keys:
+            if key not in results.references:
+                issue(MALFORMED, g.file, f"source cites [{key}], which {references_path.name} does not list")
+    for p in results.problems:
+        for key in cited_keys(p.summary + " ".join(p.equations)):
+            if key not in results.references:
+                issue(MALFORMED, f"{p.id}.toml", f"cites [{key}], which {references_path.name} does not list")
+
+
+def load_results(root: Path, problems_dir: Path, references_path: Path | None = None) -> Results:
+    """Everything the page shows; with `references_path`, citations are checked against it."""
+    results = _load_results(root, problems_dir)
+    if references_path is not None and results.found:
+        check_citations(results, references_path)
+    return results
+
+
+def _load_results(root: Path, problems_dir: Path) -> Results:
     results = Results(root=root, found=root.is_dir())
     problems: dict[str, Problem] = {}
 

@@ -10,6 +10,7 @@ import jinja2
 from markupsafe import Markup, escape
 
 from . import numfmt
+from .bibliography import cited_keys, link_citations
 from .load import FAIL, MALFORMED, MISSING, OK, PASS, SKIPPED, Issue, Results, external_references
 from .plots import plot_png
 
@@ -88,6 +89,13 @@ def _environment() -> jinja2.Environment:
 
 def render_page(results: Results, s: dict, problems_dir: Path) -> str:
     env = _environment()
+    refs = results.references
+    # Gate sources are plain text (escaped here); problem texts are HTML already.
+    def cite_with_entries(text: str) -> Markup:
+        entries = "".join(f'<div class="ref">{escape(refs[k].text)}</div>' for k in cited_keys(text) if k in refs)
+        return link_citations(text, refs) + Markup(entries)
+
+    env.filters.update(cite=cite_with_entries, cite_html=lambda text: link_citations(text, refs, escape_text=False))
     page = env.get_template("page.html.j2").render(
         r=results,
         s=s,

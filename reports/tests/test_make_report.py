@@ -41,8 +41,9 @@ class ReportTestCase(unittest.TestCase):
         self.out = self.tmp / "report" / "index.html"
 
     def run_report(self, *extra, results=None):
+        refs = [] if "--references" in extra else ["--references", str(FIXTURES / "references.md")]
         args = [sys.executable, str(SCRIPT), "--results", str(results or self.results),
-                "--problems", str(self.problems), "--out", str(self.out), *extra]
+                "--problems", str(self.problems), "--out", str(self.out), *refs, *extra]
         proc = subprocess.run(args, capture_output=True, text=True, timeout=120)
         self.assertNotIn("Traceback", proc.stderr, "bad input must not end in a traceback")
         page = self.out.read_text(encoding="utf-8") if self.out.is_file() else ""
@@ -307,6 +308,35 @@ class MissingInputs(ReportTestCase):
         self.assertEqual(proc.returncode, 0, proc.stderr)
         self.assertIn('id="p-fixture_bar"', page)
         self.assertIn("no description", page)
+
+
+class Citations(ReportTestCase):
+    def test_sources_link_to_the_full_entry_and_the_page_lists_what_it_cites(self):
+        proc, page = self.run_report()
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn('<a class="cite" href="#ref-deryugin2023"', page)
+        self.assertIn('<li id="ref-deryugin2023">', page)
+        self.assertIn("Investigation of various influence functions in peridynamics.", page)  # full entry beside the gate
+        self.assertNotIn("ref-unused1999", page, "only cited works are listed")
+
+    def test_a_source_without_a_key_is_malformed(self):
+        self.edit_json(self.gate_path("fixture.bar.energy_drift"), source="Hairer et al. 2006")
+        proc, _ = self.run_report()
+        self.assertEqual(proc.returncode, 1)
+        self.assertIn("names no bibliography key", proc.stderr)
+        self.assert_one_line_messages(proc.stderr)
+
+    def test_an_unknown_key_is_malformed(self):
+        self.edit_json(self.gate_path("fixture.bar.energy_drift"), source="[nobody2001] eq 3")
+        proc, _ = self.run_report()
+        self.assertEqual(proc.returncode, 1)
+        self.assertIn("cites [nobody2001], which references.md does not list", proc.stderr)
+
+    def test_no_bibliography_is_missing_not_a_crash(self):
+        proc, page = self.run_report("--references", str(self.tmp / "none.md"), "--allow-missing")
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertIn("no bibliography", proc.stderr)
+        self.assertIn("[deryugin2023] table 4.2", page)
 
 
 class CommandLine(ReportTestCase):
