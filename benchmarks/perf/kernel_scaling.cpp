@@ -133,7 +133,7 @@ json kernel_scaling(const Options& o) {
                         "in-cache problem {:.2f}×",
                         o.reps, scaling.lo, scaling.hi, triad_scaling.value, triad_scaling.lo, triad_scaling.hi,
                         median(c1[m]) / median(c2[m])),
-            "issue 6 (performance)", "×", problem});
+            "[pdmpm] docs/design.md (performance targets)", "×", problem});
     if (model == "pmb")
       target({"performance.bandwidth_fraction_pmb",
               fmt::format("the PMB force kernel on {} threads shall move at least 50 % of the memory bandwidth a triad "
@@ -144,7 +144,7 @@ json kernel_scaling(const Options& o) {
                           "fits in the last-level cache runs at {:.3g} bond sides/s on 1 thread against {:.3g} from "
                           "memory (×{:.2f}); {:.1f} cycles per bond side at the nominal clock",
                           cache1, rate1, cache1 / rate1, mhz > 0 ? mhz * 1e6 / rate1 : 0.0),
-              "issue 6 (performance); STREAM triad (McCalpin 1995)", "", problem});
+              "[pdmpm] docs/design.md (performance targets); STREAM triad [mccalpin1995]", "", problem});
   }
   return out;
 }

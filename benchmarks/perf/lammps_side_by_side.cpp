@@ -109,14 +109,14 @@ json lammps_side_by_side(const std::string& model, const Options& o) {
           fmt::format("a target, not a tolerance (issue 6). Ratio of medians of {} interleaved repetitions of {} steps "
                       "in one process run, one core each; bootstrap 95 % interval [{:.3g}, {:.3g}]",
                       o.reps, o.steps, speedup.lo, speedup.hi),
-          "issue 6 (performance); LAMMPS src/PERI/pair_peri_" + model + ".cpp", "×", problem});
+          "[pdmpm] docs/design.md (performance targets); [parks2008]; LAMMPS src/PERI/pair_peri_" + model + ".cpp", "×", problem});
   target({"performance.lammps_" + model + ".displacement",
           fmt::format("in the timed runs, the displacement fields of pdmpm and LAMMPS {} shall agree at every particle "
                       "to 1e-6 of the largest displacement after {} steps", style, o.steps),
           agree, 1e-6, 0.0, test::Compare::at_most,
           "same model, partial volumes, contact rule, indenter law and integrator: only round-off differs (as the "
           "elastic LAMMPS gate, lammps_comparison_gate.cpp)",
-          "issue 6; verification/support/lammps.hpp", "", problem});
+          "[parks2008]; [thompson2022]; verification/support/lammps.hpp", "", problem});
 
   return {{"model", model},
           {"lammps_style", style},

@@ -49,7 +49,7 @@ nlohmann::json memory_per_bond(const std::string& model, bool gate) {
             reset ? "a target (issue 6); VmHWM was reset before the build, so the number is the build's own peak"
                   : "a target (issue 6); VmHWM could not be reset (/proc/self/clear_refs refused): the peak may "
                     "include earlier allocations and overstate the cost",
-            "issue 6 (performance); /proc/self/status VmHWM, VmRSS", "B", problem});
+            "[pdmpm] docs/design.md (performance targets); /proc/self/status VmHWM, VmRSS", "B", problem});
   return {{"model", model},
           {"refine", refine},
           {"bond_sides", sides},

@@ -1,6 +1,6 @@
 #pragma once
 // Medians and a bootstrap interval for a ratio of medians: the one form in which
-// the performance driver reports timings (DESIGN.md: both variants in one process,
+// the performance driver reports timings (docs/design.md: both variants in one process,
 // interleaved repetitions, ratio of medians with a confidence band).
 #include <vector>
 

@@ -48,10 +48,13 @@ def load_bibliography(path: Path) -> dict[str, Reference]:
     return refs
 
 
-def cited_keys(text: str) -> list[str]:
-    """Keys cited in `text`, in order of first appearance."""
+def cited_keys(text: str, refs: dict[str, Reference] | None = None) -> list[str]:
+    """Keys cited in `text`, in order of first appearance. With `refs`, a bracketed word is
+    a citation only if it is a known key or looks like one (has a year): "[m]" is a unit."""
     seen: list[str] = []
     for key in KEY.findall(text):
+        if refs is not None and key not in refs and not any(c.isdigit() for c in key):
+            continue
         if key not in seen:
             seen.append(key)
     return seen

@@ -148,9 +148,9 @@ class Results:
         """The works the page cites (gate sources, problem texts), in bibliography order."""
         keys = set()
         for g in self.gates:
-            keys.update(cited_keys(g.source))
+            keys.update(cited_keys(g.source, self.references))
         for p in self.problems:
-            keys.update(cited_keys(p.summary + " ".join(p.equations)))
+            keys.update(cited_keys(p.summary + " ".join(p.equations), self.references))
         return [ref for key, ref in self.references.items() if key in keys]
 
     def count(self, status: str) -> int:
@@ -526,7 +526,7 @@ def check_citations(results: Results, references_path: Path) -> None:
     for g in results.gates:
         if g.status not in (PASS, FAIL):  # unreadable, or not recorded here: said already
             continue
-        keys = cited_keys(g.source)
+        keys = cited_keys(g.source, results.references)
         if not keys:
             issue(MALFORMED, g.file, f'"source" names no bibliography key ([key] of {references_path.name}): '
                   f"{g.source[:80]!r}")
@@ -534,7 +534,7 @@ def check_citations(results: Results, references_path: Path) -> None:
             if key not in results.references:
                 issue(MALFORMED, g.file, f"source cites [{key}], which {references_path.name} does not list")
     for p in results.problems:
-        for key in cited_keys(p.summary + " ".join(p.equations)):
+        for key in cited_keys(p.summary + " ".join(p.equations), results.references):
             if key not in results.references:
                 issue(MALFORMED, f"{p.id}.toml", f"cites [{key}], which {references_path.name} does not list")
 

@@ -1,6 +1,6 @@
 #pragma once
 // Stress around a circular hole of radius a in a plate under remote uniaxial
-// tension σ along y (SPEC §9: the δ-convergence reference for peak stress).
+// tension σ along y (docs/verification/analytic_solutions.md: the δ-convergence reference for peak stress).
 //  Kirsch (1898), infinite plate, polar (r, θ) with θ measured from the load axis:
 //   σ_rr = σ/2 (1 − a²/r²) + σ/2 (1 − 4a²/r² + 3a⁴/r⁴) cos 2θ
 //   σ_θθ = σ/2 (1 + a²/r²) − σ/2 (1 + 3a⁴/r⁴) cos 2θ

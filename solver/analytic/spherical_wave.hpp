@@ -1,7 +1,7 @@
 #pragma once
 // Outgoing spherical elastic wave from a cavity of radius r₀ whose wall moves
-// radially as g(t) = w₀ sin(2πt/T) for t ≥ 0 (SPEC §9, seed 001 §9). The source
-// runs on for all t > 0: seed 001 gives an oscillation period and amplitude and
+// radially as g(t) = w₀ sin(2πt/T) for t ≥ 0 (docs/verification/analytic_solutions.md, Deryugin et al. 2023 §9). The source
+// runs on for all t > 0: Deryugin et al. 2023 gives an oscillation period and amplitude and
 // no duration, and its end time is 7 periods.
 // Potential φ = F(τ)/r, τ = t − (r − r₀)/c_p, u_r = −F'(τ)/(c_p r) − F(τ)/r²,
 // with F' + (c_p/r₀) F = −c_p r₀ g(t), F(t ≤ 0) = 0, integrated in closed form:

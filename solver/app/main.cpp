@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
   cmd_run->add_flag("--no-fields", run.no_fields, "Skip fields.h5/.xdmf (history and summary only)");
 
   pdmpm::app::ConstantsArgs cst;
-  auto* cmd_const = app.add_subcommand("constants", "Print the bond constants of SPEC §2–3 for a material and horizon");
+  auto* cmd_const = app.add_subcommand("constants", "Print the bond constants of docs/models/pmb.md and docs/models/lps.md for a material and horizon");
   cmd_const->add_option("--E", cst.E, "Young's modulus (Pa)")->check(CLI::PositiveNumber);
   cmd_const->add_option("--nu", cst.nu, "Poisson's ratio")->check(CLI::Range(-0.999, 0.4999));
   cmd_const->add_option("--delta", cst.delta, "Horizon δ (m)")->check(CLI::PositiveNumber);

@@ -3,7 +3,7 @@
 // conditions (kind = "analytic"): the particles of the region follow the field
 // exactly. Parameters come from the scene's [boundary.parameters] table.
 //   affine          u = H x with H from h_xx, h_xy, … (missing entries 0)
-//   spherical_wave  u = (x/r) u_r(r, t) of the outgoing spherical wave (SPEC §9);
+//   spherical_wave  u = (x/r) u_r(r, t) of the outgoing spherical wave (docs/verification/analytic_solutions.md);
 //                   parameters r0, period, amplitude; wave speed from the material
 #include <map>
 #include <memory>

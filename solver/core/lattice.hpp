@@ -1,5 +1,5 @@
 #pragma once
-// The uniform square/cubic lattice every particle lives on (SPEC §1). Particles
+// The uniform square/cubic lattice every particle lives on (docs/discretisation.md). Particles
 // carry integer site coordinates, so family membership (|ξ| ≤ δ) is decided
 // exactly on integers and bond vectors ξ are exact multiples of the spacing.
 #include <cmath>

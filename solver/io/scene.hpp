@@ -60,8 +60,8 @@ struct ProbeSpec {
 
 struct ContactSpec {
   bool enabled = false;
-  double stiffness_factor = 15.0;  // c_s = 15 c (seed 001 eq 6.3)
-  double distance_factor = 0.9;    // d = min(0.9 |ξ|, 1.35 Δx) (seed 001 eq 6.4)
+  double stiffness_factor = 15.0;  // c_s = 15 c (Deryugin et al. 2023 eq 6.3)
+  double distance_factor = 0.9;    // d = min(0.9 |ξ|, 1.35 Δx) (Deryugin et al. 2023 eq 6.4)
   double max_distance = 1.35;      // in units of Δx
   bool bonded_pairs = false;       // also between bonded particles (LAMMPS peri/pmb's rule)
 };

@@ -137,7 +137,7 @@ void read_model(const TomlReader& m, Scene& s) {
   if (auto wv = m.optional_string("weighted_volume")) {
     if (s.model != "lps") m.fail("weighted_volume", "only for type = \"lps\"");
     if (*wv != "discrete" && *wv != "continuum")
-      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, seed 004 eq 15); got \"" + *wv + "\"");
+      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, Gu & Zhou 2017 eq 15); got \"" + *wv + "\"");
     s.continuum_weighted_volume = *wv == "continuum";
   }
   if (auto c = m.optional_table("contact")) {

@@ -47,8 +47,8 @@ enum class BcKind {
   symmetry,  // mirror plane on a grid line: nodes beyond it mirror those inside
 };
 
-// Failure rule of the ductile criterion ε_f = d₀ exp(c η) (SPEC §6, seed 000 eqs 8–9).
-// strain: fail when ε̄_p ≥ ε_f(η) at the current η (SPEC wording);
+// Failure rule of the ductile criterion ε_f = d₀ exp(c η) (docs/models/planned.md, Noorian et al. eqs 8–9).
+// strain: fail when ε̄_p ≥ ε_f(η) at the current η (the reading docs/choices.md takes);
 // accumulated: fail when ∫ dε̄_p / ε_f(η) ≥ 1 (path-dependent variant).
 enum class FailureRule { strain, accumulated };
 
@@ -125,7 +125,7 @@ struct Settings {
   Setting setting = D == 1 ? Setting::bar1d : D == 2 ? Setting::plane_stress : Setting::solid3d;  // "setting"
 
   // Background grid. Grid lines pass through `origin`; cell size is `cell_size` if > 0,
-  // else cell_factor × particle spacing (seed 000: 2Δx). The node box is [domain_min,
+  // else cell_factor × particle spacing (Noorian et al.: 2Δx). The node box is [domain_min,
   // domain_max] snapped outward to grid lines; unset → particle bounds ± padding_cells.
   double cell_size = 0.0;         // "grid.cell_size" (m), ≥ 0
   double cell_factor = 2.0;       // "grid.cell_factor", [1, 16]

@@ -23,7 +23,7 @@ inline double triaxiality(const Mat<3>& s) {
   return m / q;
 }
 
-// Ductile fracture strain of SPEC §6 (seed 000 eqs 8–9): ε_f = d₀ exp(c η).
+// Ductile fracture strain of docs/models/planned.md (Noorian et al. eqs 8–9): ε_f = d₀ exp(c η).
 inline double fracture_strain(double d0, double c, double eta) { return d0 * std::exp(c * eta); }
 
 }  // namespace pdmpm::mpm

@@ -1,5 +1,5 @@
 #pragma once
-// Bond constants of SPEC §2–3, derived in closed form.
+// Bond constants of docs/models/pmb.md and docs/models/lps.md, derived in closed form.
 //   I_n = ∫₀^δ ω(r) rⁿ dr (influence moments)
 //   PMB micromodulus c from W_PD = W_classical under isotropic expansion:
 //     3D  c = 3E / (2π(1−2ν) I₃)          2D plane stress c = 2E / ((1−ν) π h I₂)
@@ -18,14 +18,14 @@ double lps_weighted_volume(Influence w, Setting s, double delta, double measure)
 double critical_stretch(Influence w, Setting s, const Elastic& m, double fracture_energy, double delta, double measure);
 
 // Coefficients of the state-based force scalar t = (A θ ω|ξ| + B ω e) / m and
-// energy W = ½ κ θ² + (B / 2m) Σ ω (e − γ θ |ξ|)² V  (SPEC §3; 1D has no volumetric part).
+// energy W = ½ κ θ² + (B / 2m) Σ ω (e − γ θ |ξ|)² V  (docs/models/lps.md; 1D has no volumetric part).
 struct LpsCoefficients {
   double A, B, kappa, gamma;
   int d;  // dimension in θ = (d/m) Σ ω |ξ| e V
 };
 LpsCoefficients lps_coefficients(Setting s, const Elastic& m);
 
-// Madenci & Oterkus constants (SPEC §3), for cross-checking the same model.
+// Madenci & Oterkus constants (docs/models/lps.md), for cross-checking the same model.
 struct MadenciOterkus {
   double a, b, d;
 };

@@ -1,6 +1,6 @@
 #pragma once
 // Short-range repulsion between particles that are not joined by an intact
-// bond (seed 001 eqs 6.2–6.4; with `bonded_pairs`, between all pairs, as in
+// bond (Deryugin et al. 2023 eqs 6.2–6.4; with `bonded_pairs`, between all pairs, as in
 // LAMMPS' peri/pmb): for |y| < d_ij,
 //   f = (c_s/δ)(|y| − d_ij) y/|y| V_j,  c_s = 15 c,  d_ij = min(0.9|ξ|, 1.35Δx).
 // A separate loop, run only when a scene enables contact, over a Verlet list:

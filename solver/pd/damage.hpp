@@ -1,5 +1,5 @@
 #pragma once
-// Local damage φ_i = 1 − Σ_j μ_ij V_j / Σ_j V_j over the family (seed 001 eq 10.2).
+// Local damage φ_i = 1 − Σ_j μ_ij V_j / Σ_j V_j over the family (Deryugin et al. 2023 eq 10.2).
 #include <vector>
 
 #include "solver/pd/system.hpp"

@@ -1,6 +1,6 @@
 #pragma once
-// Influence functions ω(r) of seed 001 table 4.1, plus ω = 1/r (the "spherical"
-// LPS choice of seed 001 §5). All take r = |ξ| and the horizon δ.
+// Influence functions ω(r) of Deryugin et al. 2023 table 4.1, plus ω = 1/r (the "spherical"
+// LPS choice of Deryugin et al. 2023 §5). All take r = |ξ| and the horizon δ.
 #include <array>
 #include <optional>
 #include <string>

@@ -1,5 +1,5 @@
 #pragma once
-// Ordinary state-based linear peridynamic solid (SPEC §3; Silling et al. 2007,
+// Ordinary state-based linear peridynamic solid (docs/models/lps.md; Silling et al. 2007,
 // Le, Chan & Schwartz 2014 for 2D): two passes per evaluation,
 //   θ_i = (d/m_i) Σ_j ω β |ξ| e V_j,
 //   t_ij = (A θ_i ω|ξ| + B ω e) / m_i,   f_i = Σ_j (t_ij + t_ji) β V_j M_ij,

@@ -17,7 +17,7 @@ double Elastic::isotropic_energy_coefficient(Setting s) const {
     case Setting::bar1d: return 0.5 * E;                                  // ½ E s²
     case Setting::plane_stress: return E / (1.0 - nu);                     // E s² / (1 − ν)
     case Setting::plane_strain: return E / ((1.0 + nu) * (1.0 - 2.0 * nu)); // 2(λ + G) s²
-    case Setting::solid3d: return 1.5 * E / (1.0 - 2.0 * nu);              // seed 001 eq 4.5
+    case Setting::solid3d: return 1.5 * E / (1.0 - 2.0 * nu);              // Deryugin et al. 2023 eq 4.5
   }
   return 0.0;
 }

@@ -1,8 +1,8 @@
 #pragma once
 // Partial-volume factor β(|ξ|): the fraction of neighbour j's cell that lies
-// inside the horizon (SPEC §1).
+// inside the horizon (docs/discretisation.md).
 //  none     β = 1 for |ξ| ≤ δ.
-//  seed001  seed 001 eq 7.2: 1 for |ξ| ≤ δ − Δx/2, (δ + Δx/2 − |ξ|)/Δx up to δ, 0 beyond.
+//  seed001  Deryugin et al. 2023 eq 7.2: 1 for |ξ| ≤ δ − Δx/2, (δ + Δx/2 − |ξ|)/Δx up to δ, 0 beyond.
 //  extended the same ramp continued to δ + Δx/2 (family reaches δ + Δx/2).
 #include <optional>
 #include <string_view>

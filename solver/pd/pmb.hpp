@@ -1,5 +1,5 @@
 #pragma once
-// Bond-based prototype microelastic brittle model (SPEC §2, seed 001 §3–4):
+// Bond-based prototype microelastic brittle model (docs/models/pmb.md, Deryugin et al. 2023 §3–4):
 // f = c ω β s μ (ξ+η)/|ξ+η| V_j, s = e/|ξ|, μ = 0 for ever once s ≥ s₀.
 #include "solver/pd/model.hpp"
 

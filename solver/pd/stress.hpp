@@ -1,5 +1,5 @@
 #pragma once
-// Stress output (SPEC §3): non-local deformation gradient from intact bonds,
+// Stress output (docs/models/lps.md): non-local deformation gradient from intact bonds,
 //   F − I = (Σ ω β η⊗ξ V_j)(Σ ω β ξ⊗ξ V_j)⁻¹,
 // small strain ε = sym(F − I) and Hooke's law for the setting. Written as the
 // 3D tensor (xx, yy, zz, xy, yz, xz) so every dimension shares one format.

@@ -32,8 +32,8 @@ struct System {
   double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
   Influence influence = Influence::constant;
   PartialVolume partial_volume = PartialVolume::seed001;
-  // LPS weighted volume: false → the discrete sum over each family (SPEC §3; exact
-  // patch tests), true → the continuum integral for every particle (seed 004 eq 15).
+  // LPS weighted volume: false → the discrete sum over each family (docs/models/lps.md; exact
+  // patch tests), true → the continuum integral for every particle (Gu & Zhou 2017 eq 15).
   bool continuum_weighted_volume = false;
 
   double spacing() const { return particles.lattice.spacing; }

@@ -1,5 +1,5 @@
 #pragma once
-// Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j (SPEC §3)
+// Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j (docs/models/lps.md)
 // and the dilatation θ_i = (d/m_i) Σ_j ω β |ξ| e V_j.
 #include <vector>
 

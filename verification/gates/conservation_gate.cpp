@@ -247,7 +247,7 @@ void momentum_gates(bool spin) {
               : "The pair terms are bitwise antisymmetric, so only rounding changes P; the bound is its worst case "
                 "accumulated over the run: per step (n_b + 3)u Δt Σ_i V Σ_j|pair term| (family sums of ≤ n_b terms) "
                 "+ 2u Σ ρV|v| (velocity updates), plus 2Nu Σ ρV|v| for the final sums.",
-         "Newton's third law for PD pair forces (Silling 2000; Silling et al. 2007 §4 for states); velocity Verlet "
+         "Newton's third law for PD pair forces ([silling2000]; [silling2007] §4 for states); velocity Verlet "
          "conserves linear and angular momentum of central pair forces (Hairer, Lubich & Wanner, Geometric "
          "Numerical Integration, §IV.1)",
          "", "conservation"});
@@ -339,7 +339,7 @@ void energy_gates() {
                            std::to_string(strain) +
                            "), and the Δt² correction multiplies them by ≤ 0.64. 10 × strain covers the constants; "
                            "a secular drift of a non-symplectic scheme would grow with the 10⁴ steps instead.",
-                       "Hairer, Lubich & Wanner, Geometric Numerical Integration §IX (modified energy); derivation in "
+                       "[hairer2006] §IX (modified energy); derivation in "
                        "conservation_gate.cpp",
                        "", "conservation"});
     test::record_gate({id + ".drift",
@@ -349,7 +349,7 @@ void energy_gates() {
                        "E = I_h + g(t) with g = (Δt²/8)ΣV|f|²/ρ ∈ [g_min, g_max]; the least-squares slope of a signal "
                        "confined to a band of width a over a window T satisfies |b|T ≤ 1.5a (Σ|t − t̄| / Σ(t − t̄)² = "
                        "3/T), so |b_E|T ≤ 1.5(g_max − g_min) + |b_I|T. A secular drift would exceed it.",
-                       "Velocity Verlet: bounded energy error, no drift (Hairer, Lubich & Wanner §IX.8)", "",
+                       "Velocity Verlet: bounded energy error, no drift ([hairer2006] §IX.8)", "",
                        "conservation"});
     rows.push_back({model, dim_name(D), p.n_real, dt, lz.dt, steps, T, emax, gmax - gmin, shadow_dev, drift_E,
                     drift_I});

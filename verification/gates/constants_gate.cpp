@@ -1,7 +1,7 @@
-// Bond constants (SPEC §2–3). The closed forms of solver/pd/constants.* are
+// Bond constants (docs/models/pmb.md and docs/models/lps.md). The closed forms of solver/pd/constants.* are
 // checked against (1) GSL adaptive quadrature of the integrals that define them
-// (solver/pd/constants_quadrature.*), (2) seed 001 table 4.2 typed as printed,
-// (3) SPEC's constant-ω forms, and (4) the LPS model against Madenci & Oterkus'
+// (solver/pd/constants_quadrature.*), (2) Deryugin et al. 2023 table 4.2 typed as printed,
+// (3) the closed form's constant-ω forms, and (4) the LPS model against Madenci & Oterkus'
 // form of the same model.
 #include <gtest/gtest.h>
 
@@ -49,7 +49,7 @@ double measure_of(Setting s) {
   return 1.0;
 }
 
-// PMB's Poisson's ratio per setting (Cauchy relation; seed 001 §3, SPEC §2). ν
+// PMB's Poisson's ratio per setting (Cauchy relation; Deryugin et al. 2023 §3, docs/models/pmb.md). ν
 // plays no role in a bar; 1/4 is used there so every setting has a value.
 pd::Elastic pmb_material(Setting s) { return {E, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, 7850.0}; }
 
@@ -94,7 +94,7 @@ TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
                        "W_classical over the horizon for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "SPEC §2; seed 001 eq 4.2–4.5 (energy matching); constants.hpp", "", "constants"});
+                       "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp", "", "constants"});
   }
   test::record_data(
       "constants", "micromodulus",
@@ -127,7 +127,7 @@ TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
                        "for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "SPEC §3; Silling et al. 2007 (m = ∫ ω|ξ|² dV); constants.hpp", "", "constants"});
+                       "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp", "", "constants"});
   }
   test::record_data(
       "constants", "weighted_volume",
@@ -160,7 +160,7 @@ TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
                        "the energy of all bonds crossing a unit crack area, for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "SPEC §2; Silling & Askari 2005 §4 (G₀ as the work to break the bonds across a crack), "
+                       "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
                        "ω(ξ) kept inside the integral; constants.hpp",
                        "", "constants"});
   }
@@ -177,7 +177,7 @@ TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
 }
 
 // ---------------------------------------------------------------------------
-// 2. Seed 001 table 4.2, typed as printed, against the general 3D formula
+// 2. Deryugin et al. 2023 table 4.2, typed as printed, against the general 3D formula
 //    c = 3E / (2π(1−2ν) I₃).
 
 // Rounding bound for one side vs the other, in units of ε (= 2u, u the unit
@@ -200,7 +200,7 @@ double table42_tolerance_eps(Influence w) {
 }
 
 TEST(FastConstants, Seed001Table42ReproducedExactly) {
-  const double nu = 0.25;  // seed 001 §3: PMB has ν = 1/4
+  const double nu = 0.25;  // Deryugin et al. 2023 §3: PMB has ν = 1/4
   const pd::Elastic mat{E, nu, 7850.0};
   const double d4 = delta * delta * delta * delta;
   const double base = E / ((1.0 - 2.0 * nu) * pi * d4);
@@ -225,18 +225,18 @@ TEST(FastConstants, Seed001Table42ReproducedExactly) {
     const double tol = table42_tolerance_eps(t.w) * eps;
     rows.push_back({str(pd::name(t.w)), t.form, t.value, ours, d, d / eps, tol});
     test::record_gate({"constants.seed001_table42." + str(pd::name(t.w)),
-                       "Seed 001 table 4.2's 3D micromodulus for ω = " + str(pd::name(t.w)) + ", " + t.form +
+                       "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(pd::name(t.w)) + ", " + t.form +
                            ", shall equal our general formula c = 3E/(2π(1−2ν)I₃) to rounding",
                        d, 0.0, tol, test::Compare::abs,
                        "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
                        "unit roundoffs per side plus the cancellation in the moments (polynomial ω ≤ 17×, Gaussian "
                        "e/(e−2) ≈ 3.8×, exponential 3e/(3e−8) ≈ 53× on each side), see table42_tolerance_eps.",
-                       "seed 001 §4 eqs 4.6–4.17 and table 4.2", "", "constants"});
+                       "[deryugin2023] §4 eqs 4.6–4.17 and table 4.2", "", "constants"});
   }
   test::record_data(
       "constants", "seed001_table42",
       {{"kind", "table"},
-       {"title", "Seed 001 table 4.2 (3D PMB micromodulus) reproduced"},
+       {"title", "Deryugin et al. 2023 table 4.2 (3D PMB micromodulus) reproduced"},
        {"columns",
         {"ω", "printed form", "printed form value", "our formula", "rel. difference", "difference / ε", "tolerance"}},
        {"rows", rows},
@@ -244,7 +244,7 @@ TEST(FastConstants, Seed001Table42ReproducedExactly) {
 }
 
 // ---------------------------------------------------------------------------
-// 3. SPEC's constant-ω forms.
+// 3. the closed form's constant-ω forms.
 
 TEST(FastConstants, SpecConstantInfluenceForms) {
   constexpr double tol = 16.0 * eps;
@@ -258,16 +258,16 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double ours = pd::pmb_micromodulus(Influence::constant, Setting::plane_stress, mat, delta, thickness);
     rows.push_back({"c, plane stress (ν = 1/3)", "9E/(πhδ³)", spec, ours, rel_diff(ours, spec)});
     test::record_gate({"constants.spec.c_plane_stress_constant",
-                       "The plane-stress constant-ω micromodulus shall equal SPEC's 9E/(πhδ³) (ν = 1/3)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "SPEC §2", "", "constants"});
+                       "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
+                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
   }
   {
     const auto mat = pmb_material(Setting::bar1d);
     const double spec = 2.0 * E / (area * delta * delta);
     const double ours = pd::pmb_micromodulus(Influence::constant, Setting::bar1d, mat, delta, area);
     rows.push_back({"c, 1D bar", "2E/(Aδ²)", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({"constants.spec.c_1d_constant", "The 1D constant-ω micromodulus shall equal SPEC's 2E/(Aδ²)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "SPEC §2", "", "constants"});
+    test::record_gate({"constants.spec.c_1d_constant", "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
+                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
   }
   {
     const auto mat = pmb_material(Setting::solid3d);
@@ -275,8 +275,8 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double ours = pd::critical_stretch(Influence::constant, Setting::solid3d, mat, G0, delta, 1.0);
     rows.push_back({"s₀, 3D", "sqrt(5G₀/(9Kδ))", spec, ours, rel_diff(ours, spec)});
     test::record_gate({"constants.spec.s0_3d_constant",
-                       "The 3D constant-ω critical stretch shall equal SPEC's sqrt(5G₀/(9Kδ))", rel_diff(ours, spec),
-                       0.0, tol, test::Compare::abs, reason, "SPEC §2; Silling & Askari 2005 §4 (G₀ = πc s₀² δ⁵/10)",
+                       "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))", rel_diff(ours, spec),
+                       0.0, tol, test::Compare::abs, reason, "docs/models/pmb.md; [silling-askari2005] §4 (G₀ = πc s₀² δ⁵/10)",
                        "", "constants"});
   }
   {
@@ -285,13 +285,13 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double ours = pd::critical_stretch(Influence::constant, Setting::plane_stress, mat, G0, delta, thickness);
     rows.push_back({"s₀, plane stress (ν = 1/3)", "sqrt(4πG₀/(9Eδ))", spec, ours, rel_diff(ours, spec)});
     test::record_gate({"constants.spec.s0_plane_stress_constant",
-                       "The plane-stress constant-ω critical stretch shall equal SPEC's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "SPEC §2", "", "constants"});
+                       "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
+                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
   }
   test::record_data("constants", "spec_constant_forms",
                     {{"kind", "table"},
-                     {"title", "SPEC constant-ω forms vs the general formulas"},
-                     {"columns", {"quantity", "SPEC form", "SPEC value", "general formula", "rel. difference"}},
+                     {"title", "Closed constant-ω forms vs the general formulas"},
+                     {"columns", {"quantity", "closed form", "closed-form value", "general formula", "rel. difference"}},
                      {"rows", rows},
                      {"caption", "E = 200 GPa, δ = 3.015 mm, h = 1 mm, A = 1 mm², G₀ = 1000 J/m²."}});
 }
@@ -300,13 +300,13 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
 // 4. Madenci & Oterkus' form of the LPS model vs ours.
 //
 // Madenci & Oterkus (2014, "Peridynamic Theory and Its Applications", Springer,
-// ch. 4; 2016, JMPS 86:192, eqs 2–8; seed 000 eqs 3–7) write the ordinary
+// ch. 4; 2016, JMPS 86:192, eqs 2–8; Noorian et al. eqs 3–7) write the ordinary
 // state-based elastic solid with the influence function w = δ/|ξ| as
 //   W = a θ² + b Σ_j w (|y_j − y_i| − |x_j − x_i|)² V_j,
 //   θ = d Σ_j w Λ_ij (|y_j − y_i| − |x_j − x_i|) V_j,  Λ = (y/|y|)·(x/|x|),
 // whose derivative with respect to the extension is their force
-// t = 2δ(a d Λ θ/|ξ| + b s) (the form seed 000 eq 3 and MOOSE's
-// ComputeSmallStrainConstantHorizonMaterialOSPD use). Their constants (SPEC §3):
+// t = 2δ(a d Λ θ/|ξ| + b s) (the form Noorian et al. eq 3 and MOOSE's
+// ComputeSmallStrainConstantHorizonMaterialOSPD use). Their constants (docs/models/lps.md):
 //   3D a = ½(κ − 5μ/3), b = 15μ/(2πδ⁵), d = 9/(4πδ⁴)
 //   2D a = ½(κ − 2μ),   b = 6μ/(πhδ⁴),  d = 2/(πhδ³)   (κ the 2D bulk modulus)
 //   1D a = 0,           b = E/(2Aδ³),   d = 1/(2Aδ²).
@@ -406,8 +406,8 @@ TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
                              std::string(load.name) + " in setting " + str(pd::name(s)),
                          d, 0.0, quadrature_tolerance, test::Compare::abs,
                          quadrature_reason(std::max(mo_err / std::abs(W_mo), W_ours.relerr())),
-                         "Madenci & Oterkus 2014 (Peridynamic Theory and Its Applications, ch. 4) and 2016 (JMPS "
-                         "86:192); seed 000 eqs 3–7; SPEC §3",
+                         "[madenci-oterkus2014] ch. 4 and [madenci-oterkus2016] (JMPS "
+                         "86:192); [noorian] eqs 3–7; docs/models/lps.md",
                          "", "constants"});
     }
   }

@@ -1,4 +1,4 @@
-// Convergence of the spherical wave (seed 001 §9, issue 4 item 5): how the
+// Convergence of the spherical wave (Deryugin et al. 2023 §9, issue 4 item 5): how the
 // error at t = 3×10⁻⁵ s falls with the choices a user makes, and what each costs.
 //  (a) Δx → 0 at the seeds' m = δ/Δx = 3.015 (δ-convergence), all eight cases;
 //  (b) m = 2 … 6 at the paper's δ = 1.5075 cm (m-convergence);
@@ -13,7 +13,7 @@
 // not change with Δx, so δ → 0 converges to a local elastic medium whose P-wave
 // speed is the lattice's long-wave speed c_p·R(m), not c_p (R: dispersion() in
 // spherical_wave_run.hpp; PMB's micromodulus is calibrated on the continuum,
-// SPEC §2). Measured against the true c_p the error then levels off at the phase
+// docs/models/pmb.md). Measured against the true c_p the error then levels off at the phase
 // lag of that speed. Measured against the wave with speed c_p·R(m) (R along a
 // lattice axis) it falls further, but not to zero where the lattice sums are
 // anisotropic (PMB with the seed's partial volume: R differs between axis and
@@ -128,7 +128,7 @@ TEST(FullConvergence, Study) {
     test::record_gate({"convergence.delta." + c.key() + ".monotone",
                        "At m = 3.015, " + c.label + ": the relative L2 error at t = 3×10⁻⁵ s shall fall at each halving of Δx = 1 → 0.5 → 0.25 cm",
                        monotone ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least, "a yes/no check of monotone convergence",
-                       "DESIGN.md: convergence gates need ≥ 3 levels and a monotone error", "", problem});
+                       "[pdmpm] docs/design.md: convergence gates need ≥ 3 levels and a monotone error", "", problem});
   }
   test::record_data(problem, "01_delta_table", {{"kind", "table"}, {"title", "(a) Δx → 0 at m = 3.015: error at t = 3×10⁻⁵ s"}, {"columns", row_columns},
                                                 {"rows", rows_a}});

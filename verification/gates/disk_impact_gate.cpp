@@ -1,5 +1,5 @@
 // Brittle disk struck by a rigid sphere, with each of the six influence functions
-// of seed 001 table 4.1 (seed 001 §10, figs 10.1–10.2; SPEC §8 disk_impact). The
+// of Deryugin et al. 2023 table 4.1 (Deryugin et al. 2023 §10, figs 10.1–10.2; docs/verification/disk_impact.md). The
 // seed's reference is qualitative: damage pictures per ω. The report gets those
 // pictures (the top layer, as fig. 10.2, and the central section through the
 // impact in deformed positions, for the fragments of fig. 10.1) and a table of the
@@ -131,18 +131,18 @@ void run_all(double spacing, const std::string& tag) {
                      "the disk, lattice and indenter are exactly symmetric; mirrored particles sum their bonds in mirrored "
                      "order, so a bond within round-off of s₀ can break a step earlier on one side and fragmentation "
                      "amplifies it. 5 % of the damage allows that and rejects a pattern that is not symmetric (~100 %)",
-                     "seed 001 §10 set-up (SPEC §8 disk_impact)", "", problem});
+                     "[deryugin2023] §10 set-up (docs/verification/disk_impact.md)", "", problem});
   test::record_data(problem, "01_table_" + tag,
                     {{"kind", "table"},
                      {"title", "Broken-bond fraction per influence function" + at},
                      {"columns", {"ω", "c [N/m⁶]", "broken-bond fraction", "max φ", "asymmetry", "particles", "steps", "wall [s]"}},
                      {"rows", rows},
-                     {"caption", "PMB with the micromodulus of seed 001 table 4.2 for each ω; s₀ = 0.0005 for all (seed 001 §10). "
+                     {"caption", "PMB with the micromodulus of Deryugin et al. 2023 table 4.2 for each ω; s₀ = 0.0005 for all (Deryugin et al. 2023 §10). "
                                  "Broken-bond fraction = broken bonds / all bonds at t = 30 µs."}});
-  test::record_image(problem, "02_top_layer_" + tag, test::grid(tops, 3), "Damage of the top layer per ω (cf. seed 001 fig. 10.2)" + at,
+  test::record_image(problem, "02_top_layer_" + tag, test::grid(tops, 3), "Damage of the top layer per ω (cf. Deryugin et al. 2023 fig. 10.2)" + at,
                      "Left to right, top to bottom: " + order + ". Reference positions; colour: φ from 0 (dark blue) to 1 (dark red).");
   test::record_image(problem, "03_section_" + tag, test::grid(sections, 2),
-                     "Central section y = 0 through the impact, deformed positions, |x| ≤ 15 mm (cf. seed 001 fig. 10.1)" + at,
+                     "Central section y = 0 through the impact, deformed positions, |x| ≤ 15 mm (cf. Deryugin et al. 2023 fig. 10.1)" + at,
                      "Left to right, top to bottom: " + order + ". The disk is 2.5 mm thick; the sphere has moved 3 mm down. "
                      "Colour: φ from 0 (dark blue) to 1 (dark red).");
 }

@@ -224,7 +224,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
                        "nonlinear kinematics at strain 1e-9 (relative ~1e-9) and rounding of the second difference, "
                        "which loses log10(1/(ωΔt)²) ≤ 4 digits (≤ 1e-12). 1e-7 leaves margin; a wrong coefficient "
                        "or moment would be ≥ 1e-3.",
-                       "Derivation in dispersion_gate.cpp header and the report section; SPEC §9", "", "dispersion"});
+                       "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/dispersion.md; [silling2000]", "", "dispersion"});
 
   // 2. Long-wave limit on a converged lattice (ω = 1, extended ramp, m = 8.015): within 1 % of classical.
   Discretisation conv;
@@ -245,7 +245,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
                      "error vs m'; lattice_sums: the extended ramp converges at second order); Richardson leaves "
                      "O((kδ)⁴) ≲ 1e-5. At the default ω = 1, seed001, m = 3.015 the lattice sums are not converged "
                      "and the claim does not hold (see the tables): that is reported, not gated.",
-                     "SPEC §9 (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
+                     "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
                      "", "dispersion"});
   long_wave_rows.push_back({model, str(pd::name(s)), c_cl, c0_default - 1.0,
                             std::sqrt(relation_omega2<D>(model, s, mat, def, measure, 1e-3 / dx)) / (1e-3 / dx) / c_cl - 1.0,

@@ -1,4 +1,4 @@
-// Peak stress at a hole under δ-convergence (issue 4 item 6; SPEC §9 "plate with
+// Peak stress at a hole under δ-convergence (issue 4 item 6; docs/verification/analytic_solutions.md "plate with
 // a circular hole"): a plane-stress LPS plate (ω = 1, ν = 0.3) of width W = 6a and
 // length L = 12a with a central hole of radius a = 5 mm, pulled along y by
 // σ = 10 MPa, quasi-static by adaptive dynamic relaxation, one quarter with two
@@ -239,14 +239,14 @@ void study(const std::string& tier, const std::vector<int>& ns) {
   test::record_gate({"hole_concentration." + tier + ".monotone",
                      "The hole-edge σ_yy/σ shall rise monotonically toward K_t as δ halves (δ = 4, 2, 1, 0.5 × base at δ/Δx = 3.015)",
                      monotone ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least, "a yes/no check of monotone convergence",
-                     "issue 4 item 6; DESIGN.md convergence gates", "", problem});
+                     "[pdmpm] docs/design.md (convergence gates); [kirsch1898]", "", problem});
   test::record_gate({"hole_concentration." + tier + ".extrapolated_kt",
                      "The hole-edge K extrapolated to δ → 0 (fit K∞ − C (δ/a)^½ over the four levels), with the flat-edge surface effect "
                      "divided out, shall lie within 3 % of the finite-width reference K_t",
                      corr_half.limit, kref, 0.03, test::Compare::rel,
                      "3 % (issue 4): the reference fits differ by 0.5 %, the rest is left for the extrapolation of a slowly (order ½) "
                      "converging, staircase-scattered sequence",
-                     "Kirsch 1898; Heywood 1952 and Roark table 17.1 fits of Howland 1930 (solver/analytic/kirsch.hpp)", "", problem});
+                     "[kirsch1898]; [heywood1952] and Roark table 17.1 fits of [howland1930] (solver/analytic/kirsch.hpp)", "", problem});
 }
 
 TEST(FastHoleConcentration, KtConverges) { study("fast", {5, 10, 20, 40}); }
@@ -296,7 +296,7 @@ TEST(FastHoleConcentration, SpeedAgainstAccuracy) {
                          (worst.empty() ? std::string() : " (not so for: " + worst + ")"),
                      refinement_pays ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least,
                      "a yes/no check: the speed/accuracy plot is only a trade if more time buys accuracy",
-                     "issue 6 item 5", "", problem});
+                     "[pdmpm] docs/verification/hole_plate.md (speed/accuracy study)", "", problem});
 }
 
 TEST(FullHoleConcentration, KtConverges) { study("full", {10, 20, 40, 80}); }

@@ -1,4 +1,4 @@
-// Rock plate with a central hole under a sudden edge tension (seed 004 §5.1, SPEC §8
+// Rock plate with a central hole under a sudden edge tension (Gu & Zhou 2017 §5.1, docs/verification/
 // hole_plate), at the paper's resolution (200 × 100 particles, Δt = 1.3367e-8 s).
 // The paper: no crack at 0.0133 µs; cracks start at the hole edges perpendicular to
 // the load at 11.97 µs; still growing at 13.3 µs; the plate is fully broken at
@@ -22,7 +22,7 @@ namespace {
 
 using nlohmann::json;
 const char* problem = "hole_plate";
-const char* source = "seed 004 §5.1 (fig. 3); SPEC §8 hole_plate; issue 5";
+const char* source = "[gu-zhou2017] §5.1 (fig. 3); docs/verification/hole_plate.md";
 
 // Paper's moments (fig. 3 a–d) and later ones at which this model's cracks grow.
 const std::vector<double> paper_moments{0.0133e-6, 11.97e-6, 13.3e-6, 15.96e-6};
@@ -89,7 +89,7 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
                      max_speed, cR * (1.0 + resolution), 0.0, test::Compare::at_most,
                      "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
                      "speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "Freund, Dynamic Fracture Mechanics (1990) §5; issue 5", "m/s", problem});
+                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
 
   // Symmetry about the load axis y = 20 mm, at the last frame.
   const auto fields = run.fields();
@@ -117,7 +117,7 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
                   run.summary.at("dt_estimate").at("lanczos")});
   test::record_data(problem, "01_times",
                     {{"kind", "table"},
-                     {"title", "Measured times against seed 004 §5.1"},
+                     {"title", "Measured times against Gu & Zhou 2017 §5.1"},
                      {"columns", {"event", "paper [s]", "pdmpm [s]"}},
                      {"rows", rows},
                      {"caption", "Run at the paper's resolution and Δt, continued to 2400 steps. Times are history samples "

@@ -1,5 +1,5 @@
-// Square rock plate with a central 45° crack under biaxial edge tension (seed 004
-// §5.2, SPEC §8 inclined_crack), at the paper's resolution (200 × 200 particles,
+// Square rock plate with a central 45° crack under biaxial edge tension (Gu & Zhou 2017
+// §5.2, docs/verification/inclined_crack.md), at the paper's resolution (200 × 200 particles,
 // Δt = 1.3367e-8 s). The paper: initiation at 3.99 µs; the lower wing branches by
 // 9.31 µs; a through-crack, roughly along 45°, at 10.64 µs. The run goes on to
 // 2000 steps (26.7 µs) so that this model's later events are measured.
@@ -25,7 +25,7 @@ namespace {
 
 using nlohmann::json;
 const char* problem = "inclined_crack";
-const char* source = "seed 004 §5.2 (fig. 5); SPEC §8 inclined_crack; issue 5";
+const char* source = "[gu-zhou2017] §5.2 (fig. 5); docs/verification/inclined_crack.md";
 
 const std::vector<double> paper_moments{3.99e-6, 9.31e-6, 10.64e-6};
 const std::vector<double> later_moments{8e-6, 12e-6, 16e-6, 20e-6, 26.7e-6};
@@ -67,7 +67,7 @@ TEST(FullInclinedCrack, CracksAgainstSeed004) {
                      cR * (1.0 + resolution), 0.0, test::Compare::at_most,
                      "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
                      "speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "Freund, Dynamic Fracture Mechanics (1990) §5; issue 5", "m/s", problem});
+                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
 
   auto loc = [&](const char* name) { return opt(crack.at("locations").at(name).at("first_bond_failure")); };
   json rows = json::array();
@@ -82,7 +82,7 @@ TEST(FullInclinedCrack, CracksAgainstSeed004) {
                   run.summary.at("dt_estimate").at("lanczos")});
   test::record_data(problem, "01_times",
                     {{"kind", "table"},
-                     {"title", "Measured times against seed 004 §5.2"},
+                     {"title", "Measured times against Gu & Zhou 2017 §5.2"},
                      {"columns", {"event", "paper", "pdmpm"}},
                      {"rows", rows},
                      {"caption", "Times in seconds unless marked. Run at the paper's resolution and Δt, continued to 2000 "

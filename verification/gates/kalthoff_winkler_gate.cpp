@@ -19,7 +19,7 @@ namespace {
 
 using nlohmann::json;
 const char* problem = "kalthoff_winkler";
-const char* source = "Kalthoff & Winkler 1987; Kalthoff 2000 (Int. J. Fract. 101:1–31); issue 5";
+const char* source = "[kalthoff-winkler1988]; [kalthoff2000]";
 
 void run_case(double spacing, const std::string& tag) {
   auto scene = io::parse_scene(test::scene_file("kalthoff_winkler.toml"));
@@ -54,7 +54,7 @@ void run_case(double spacing, const std::string& tag) {
                      main->at("max_speed").get<double>(), cR * (1.0 + resolution), 0.0, test::Compare::at_most,
                      "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and "
                      "the speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "Freund, Dynamic Fracture Mechanics (1990) §5; issue 5", "m/s", problem});
+                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
 
   json rows = json::array();
   auto opt = [](const json& v) { return v.is_null() ? json("—") : v; };

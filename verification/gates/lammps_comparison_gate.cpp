@@ -5,7 +5,7 @@
 // and number of steps, in one process run (LAMMPS as a child process), with
 // interleaved repetitions for the timings.
 //  - elastic (no bond breaks): displacements agree to round-off;
-//  - LAMMPS' own example target (fast) and the seed 001 disk (full) with bond
+//  - LAMMPS' own example target (fast) and the Deryugin et al. 2023 disk (full) with bond
 //    breaking: broken-bond fractions within 10 %, damage maps side by side.
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -162,22 +162,22 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
   test::record_gate({"lammps.elastic_pmb.families", "pdmpm and LAMMPS shall build the same bonds (bond sides) from the same particles",
                      static_cast<double>(r.lmp.bonds), static_cast<double>(r.ours.sides), 0.0, test::Compare::abs,
                      "bond counts are integers: the families must be identical (|ξ| ≤ δ on the same lattice)",
-                     "LAMMPS fix_peri_neigh.cpp (partners within δ); SPEC §1", "", problem});
+                     "[parks2008]; LAMMPS fix_peri_neigh.cpp (partners within δ); docs/discretisation.md", "", problem});
   test::record_gate({"lammps.elastic_pmb.displacement",
                      "the displacement fields of pdmpm and LAMMPS (peri/pmb) shall agree at every particle to 1e-6 of the largest displacement after 300 steps of an elastic indentation",
                      rel_u, 1e-6, 0.0, test::Compare::at_most,
                      "same model, partial-volume rule, contact rule, indenter law and velocity-Verlet integrator: only round-off differs (LAMMPS stores positions x, pdmpm displacements u; summation orders differ), ~1e-12 relative per step",
-                     "issue 5 (LAMMPS side by side); LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp", "", problem});
+                     "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp", "", problem});
   test::record_gate({"lammps.elastic_pmb.displacement_per_particle",
                      "at every particle whose displacement exceeds 1e-3 of the largest, |u_pdmpm − u_LAMMPS| / |u_LAMMPS| shall "
                      "be at most 1e-6",
                      worst_particle, 1e-6, 0.0, test::Compare::at_most,
                      "as above; particles the wave has hardly reached (|u| below 1e-3 of the largest) are left out because "
                      "there |u| itself is of the order of the round-off of the other particles",
-                     "issue 5 (LAMMPS side by side)", "", problem});
+                     "[parks2008]; [thompson2022] (LAMMPS side by side)", "", problem});
   test::record_gate({"lammps.elastic_pmb.velocity", "the velocity fields shall agree to 1e-6 of the largest velocity",
                      rel_v, 1e-6, 0.0, test::Compare::at_most,
-                     "as for the displacements: the same integrator in exact arithmetic", "issue 5 (LAMMPS side by side)", "", problem});
+                     "as for the displacements: the same integrator in exact arithmetic", "[parks2008]; [thompson2022] (LAMMPS side by side)", "", problem});
   test::record_data(problem, "01_elastic",
                     {{"kind", "table"},
                      {"title", "Elastic PMB indentation: pdmpm vs LAMMPS (disk_impact_elastic.toml)"},
@@ -222,7 +222,7 @@ void compare_breaking(const std::string& scene_file, const std::string& tag, int
                      test::Compare::rel,
                      "same model and input (LAMMPS' bond-break timing and contact rule taken by the scene); fragmentation "
                      "is chaotic, so round-off may make the bond-by-bond pattern diverge (issue 5 sets 10 %)",
-                     "issue 5 (LAMMPS side by side); LAMMPS pair_peri_pmb.cpp", "", problem});
+                     "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp", "", problem});
   record_maps(tag + "_damage", label + ": damage φ, pdmpm (left) and LAMMPS (right)", setup, r.ours.damage, last.damage,
               normal, layer, ppc,
               "One lattice layer at the end of the run; colour: φ from 0 (dark blue) to 1 (dark red). Same particles, "
@@ -259,7 +259,7 @@ TEST(FullLammpsComparison, SeedDiskBrokenBondFraction) {
   const double dt = *scene.time.dt;
   const auto steps = static_cast<std::int64_t>(std::llround(*scene.time.end_time / dt));
   compare_breaking("disk_impact.toml", "seed_disk", 1, steps, dt, "lammps.disk_impact_seed.broken_fraction",
-                   "the seed 001 disk (constant ω)", 2, 0.00225, 2, true);
+                   "the Deryugin et al. 2023 disk (constant ω)", 2, 0.00225, 2, true);
 }
 
 }  // namespace

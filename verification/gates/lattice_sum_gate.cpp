@@ -1,4 +1,4 @@
-// Discrete lattice sums vs the continuum (SPEC §2: closed form = quadrature =
+// Discrete lattice sums vs the continuum (docs/models/pmb.md: closed form = quadrature =
 // lattice sum, the last converging as m = δ/Δx grows).
 //
 // At an interior particle under isotropic expansion every bond has stretch s,
@@ -6,7 +6,7 @@
 // classical W, is Σ_j ω β |ξ| V_j / ∫_H ω |ξ| dV; likewise the LPS weighted
 // volume Σ_j ω β |ξ|² V_j / ∫_H ω |ξ|² dV. Both are one-point quadratures of a
 // horizon integral over the lattice cells, and their error depends on how
-// cells cut by the horizon's boundary are weighted (β, SPEC §1):
+// cells cut by the horizon's boundary are weighted (β, docs/discretisation.md):
 //  none      β = 1 for centres inside: the sum jumps by N_shell·g(δ)·V each time
 //            m crosses the radius of a lattice shell. The error is the
 //            lattice-point discrepancy of the ball: it shrinks on average but
@@ -234,7 +234,7 @@ void study(const char* dim) {
                                "(measured: largest ratio of consecutive window maxima)",
                            step, 1.0, 0.0, test::Compare::at_most,
                            "A ratio ≤ 1 is the definition of 'decreases'; no slack.",
-                           "SPEC §1–2; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
+                           "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
         test::record_gate({id + ".order",
                            "The window-maximum lattice-sum error of the " + what +
                                " shall fall at least like m^−1.5 (fitted over m = 2…8; predicted order 2)",
@@ -242,7 +242,7 @@ void study(const char* dim) {
                            "Predicted order is 2 (the ramp matches the exact cell fractions to first moment; for "
                            "quadratic ω the boundary weight vanishes). 1.5 is half-way between that and order 1, "
                            "the bias of a ramp that misses volume (seed001), so the gate separates the two.",
-                           "SPEC §1–2; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
+                           "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
       }
     }
   }
@@ -317,7 +317,7 @@ void block_matches_stencil(const char* dim) {
                      worst, 0.0, 1e-12, test::Compare::abs,
                      "Same terms summed in possibly different order: ≤ N·u with N ≤ 200 bonds gives ≤ 3e-14 "
                      "relative; 1e-12 leaves margin.",
-                     "pmb.cpp energy, weighted_volume.hpp", "", "lattice_sums"});
+                     "[silling2007]; pmb.cpp energy, weighted_volume.hpp", "", "lattice_sums"});
   test::record_data(
       "lattice_sums", std::string("block_vs_stencil_") + dim,
       {{"kind", "table"},

@@ -37,7 +37,7 @@ struct BarResult {
 
 BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme, double cfl, bool mirror_end,
                   double periods = 1.0) {
-  const double h = kL / cells, dx = h / 2.0;  // two particles per cell (seed 000: cell = 2Δx)
+  const double h = kL / cells, dx = h / 2.0;  // two particles per cell (Noorian et al.: cell = 2Δx)
   auto particles = mu::box_particles<1>(Vec<1>(0.0), Vec<1>(kL), dx);
   for (Index p = 0; p < particles.n_real; ++p) particles.v[p][0] = kV0 * std::sin(kBeta * particles.x0[p][0]);
   mpm::Settings<1> s;
@@ -83,7 +83,7 @@ BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
 }
 
 const char* kProblem = "mpm_bar_vibration";
-const char* kSource = "first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
+const char* kSource = "[sulsky1995]; first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
 
 // Convergence in the cell size h (two particles per cell, CFL 0.1 so dt ∝ h).
 TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
@@ -176,7 +176,7 @@ TEST(FastMpmBarVibration, EnergyStaysWithinLeapfrogBound) {
                          r.energy_drift, kOmega * dt, 0.0, Compare::at_most,
                          "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
                          "factor 2 for the MPM transfers",
-                         "Hairer, Lubich & Wanner, Geometric Numerical Integration (2006), ch. IX", "", kProblem});
+                         "[hairer2006] ch. IX", "", kProblem});
   test::record_data(kProblem, "04_energy",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: total energy / initial (GIMP, MUSL, 32 cells)"},

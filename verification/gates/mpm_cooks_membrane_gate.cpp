@@ -157,7 +157,7 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
                              tips.back(), kReference, 0.01, Compare::rel,
                              "1 %: the staircase particle boundary and the particle quadrature converge at about "
                              "first order; the measured levels are within 0.6 %",
-                             "Pian & Sumihara 1984; Cook, Malkus & Plesha 1989 (converged plane-stress value 23.96)",
+                             "[pian-sumihara1984]; [cook1989] (converged plane-stress value 23.96)",
                              "", kProblem});
     }
     if (shape == mpm::ShapeFunction::linear) {
@@ -167,7 +167,7 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
                              "order ≥ 0.8 in |u − 23.96| over " + std::to_string(cells.size()) + " levels",
                              order, 0.8, 0.0, Compare::at_least,
                              "first order expected from the staircase representation of the slanted edges",
-                             "Pian & Sumihara 1984 (reference value)", "", kProblem});
+                             "[pian-sumihara1984] (reference value)", "", kProblem});
     }
   }
   plot.push_back(mu::series("reference 23.96", {hs.front(), hs.back()}, {kReference, kReference}, "dashed"));

@@ -182,21 +182,21 @@ TEST(FastMpmManufactured, OneDimensionalNeoHookean) {
   const std::array<Axis, 1> ax{Axis{0.1, M_PI, 0.0}};
   convergence_study<1>(ax, 0.0, {8, 16, 32, 64, 128}, {8, 16, 32, 64, 128}, "1d",
                        "1D manufactured solution u = A sin(πX) sin(cπt)",
-                       "manufactured solution; neo-Hookean body force derived in the file header");
+                       "[pdmpm] manufactured solution; neo-Hookean body force derived in the file header; [kamojjala2015]");
 }
 
 TEST(FastMpmManufactured, AxisAlignedTwoDimensional) {
   // A = 0.05: F_xx, F_yy = 1 ± 0.31; E = 1e7 Pa, ν = 0.3, ρ₀ = 1000 kg/m³, plane strain.
   const std::array<Axis, 2> ax{Axis{0.05, 2 * M_PI, 0.0}, Axis{0.05, 2 * M_PI, M_PI}};
   convergence_study<2>(ax, 0.3, {8, 16, 32}, {8, 16, 32}, "2d", "2D axis-aligned manufactured solution",
-                       "Wallstedt & Guilkey 2008, J. Comput. Phys. 227:9628, axis-aligned displacement MMS");
+                       "[wallstedt-guilkey2008] axis-aligned displacement MMS");
 }
 
 TEST(FullMpmManufactured, AxisAlignedTwoDimensionalFourLevels) {
   const std::array<Axis, 2> ax{Axis{0.05, 2 * M_PI, 0.0}, Axis{0.05, 2 * M_PI, M_PI}};
   convergence_study<2>(ax, 0.3, {8, 16, 32, 64}, {8, 16, 32, 64}, "2d_full",
                        "2D axis-aligned manufactured solution (four levels)",
-                       "Wallstedt & Guilkey 2008, J. Comput. Phys. 227:9628, axis-aligned displacement MMS");
+                       "[wallstedt-guilkey2008] axis-aligned displacement MMS");
 }
 
 }  // namespace

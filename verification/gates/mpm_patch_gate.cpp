@@ -88,7 +88,7 @@ TEST(FastMpmPatch, UniformStressStaysUniform) {
                          worst, 1e-12, 0.0, Compare::at_most,
                          "round-off: interior nodal forces are sums of O(10²) terms of size V τ / h that cancel exactly "
                          "in exact arithmetic",
-                         "patch test: Σ_p V_p ∇S_Ip = 0 at interior nodes for particles tiling the cells", "", kProblem});
+                         "[bardenhagen-kober2004] patch test: Σ_p V_p ∇S_Ip = 0 at interior nodes for particles tiling the cells", "", kProblem});
   test::record_data(kProblem, "01_uniform_stress",
                     {{"kind", "table"},
                      {"title", "Uniform stress patch test: max |σ − σ₀| / |σ₀| after 50 steps"},
@@ -166,11 +166,11 @@ TEST(FastMpmPatch, RigidRotationLeavesStressUnchanged) {
                          worst, 1e-12, 0.0, Compare::at_most,
                          "round-off: the Cayley increment of a skew velocity gradient is orthogonal to machine "
                          "precision, so U changes only by the accumulated rounding of 400 products (≈ 400 · 2.2e-16)",
-                         "frame indifference; Hughes & Winget (1980) incrementally objective update", "", kProblem});
+                         "frame indifference; [hughes-winget1980] incrementally objective update", "", kProblem});
   test::record_gate(Gate{"mpm.patch.rigid_rotation.stress_free",
                          "a stress-free body turned rigidly by 90° shall stay stress-free to 1e-13·E",
                          worst_free, 1e-13, 0.0, Compare::at_most,
-                         "round-off of ln U for U = I(1 + O(1e-16))", "frame indifference", "", kProblem});
+                         "round-off of ln U for U = I(1 + O(1e-16))", "frame indifference ([simo-hughes1998])", "", kProblem});
   test::record_data(kProblem, "02_rigid_rotation",
                     {{"kind", "table"},
                      {"title", "Rigid rotation by 90°: max |RᵀσR − σ₀| / E"},

@@ -1,5 +1,5 @@
 // MPM gates: J2 plasticity with linear isotropic hardening under uniaxial stress
-// (SPEC §8 dogbone steel: E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa).
+// (the dog-bone steel of Noorian et al.: E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa).
 //
 // Bilinear law (uniaxial stress): σ = E ε below yield, σ = σ_y + E_t (ε − σ_y/E)
 // beyond; the lateral strain is ε_lat = −ν σ/E − ε_p/2 (elastic Poisson contraction
@@ -30,7 +30,7 @@ using test::Gate;
 namespace mu = test::mpm_util;
 
 const char* kProblem = "mpm_uniaxial_j2";
-const char* kSource = "bilinear uniaxial law σ_y + E_t(ε − σ_y/E), SPEC §4–5 (seed 000 dogbone material)";
+const char* kSource = "[simo-hughes1998] bilinear uniaxial law σ_y + E_t(ε − σ_y/E); [noorian] dog-bone material";
 const mpm::Material kSteel{mpm::MaterialModel::j2, 215e9, 0.33, 7800.0, 340e6, 1.45e9};
 
 // Exact uniaxial response to a strain path with linear isotropic hardening, built
@@ -143,7 +143,7 @@ TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
                          "the lateral (and plane-stress thickness) strain shall equal −νσ/E − ε_p/2 to 1e-10 relative",
                          wl, 1e-10, 0.0, Compare::at_most,
                          "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
-                         "J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", "", kProblem});
+                         "[simo-hughes1998] J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", "", kProblem});
   test::record_data(kProblem, "01_stress_strain",
                     {{"kind", "plot"},
                      {"title", "Uniaxial stress–strain curve, one plane-stress material point"},
@@ -184,13 +184,13 @@ TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
                          worst, 1e-10, 0.0, Compare::at_most,
                          "each increment is either elastic or plastic along a fixed uniaxial direction, where the "
                          "return map is exact; increments straddling yield are split exactly by both",
-                         "linear isotropic hardening, κ = σ_y + H ε̄_p (Simo & Hughes 1998 §2.3)", "", kProblem});
+                         "linear isotropic hardening, κ = σ_y + H ε̄_p ([simo-hughes1998] §2.3)", "", kProblem});
   test::record_gate(Gate{"mpm.uniaxial_j2.point.cyclic_eq_plastic",
                          "the accumulated equivalent plastic strain after three cycles shall match the exact value "
                          "to 1e-10 relative",
                          std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha, 1e-10, 0.0,
                          Compare::at_most, "exact along radial paths (see above)",
-                         "ε̄_p = ∫|dε_p| in uniaxial stress", "", kProblem});
+                         "[simo-hughes1998] ε̄_p = ∫|dε_p| in uniaxial stress", "", kProblem});
   test::record_data(kProblem, "02_cyclic",
                     {{"kind", "plot"},
                      {"title", "Cyclic uniaxial loading, ±1 % (plane-stress point)"},
@@ -278,7 +278,7 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
                          "the plate's mean lateral log strain shall equal −νσ/E − ε_p/2 to within 1 % of ε₁₁",
                          worst_lateral, 0.01, 0.0, Compare::at_most,
                          "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
-                         "J2 flow rule and Hooke's law in uniaxial stress", "", kProblem});
+                         "[simo-hughes1998] J2 flow rule and Hooke's law in uniaxial stress", "", kProblem});
   test::record_data(kProblem, "03_plate_curve",
                     {{"kind", "plot"},
                      {"title", "Plate in uniaxial tension (plane stress MPM) vs bilinear law"},
@@ -297,7 +297,7 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
                          worst_reaction, 0.01, 0.0, Compare::at_most,
                          "dynamic residue and the inertia of the boundary nodes; nodes on the symmetry plane count "
                          "half (their mirror image carries the other half)",
-                         "equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section", "", kProblem});
+                         "[simo-hughes1998] equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section", "", kProblem});
 }
 
 }  // namespace

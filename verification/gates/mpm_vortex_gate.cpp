@@ -142,7 +142,7 @@ TEST(FastMpmVortex, ConvergenceAtModerateAmplitude) {
                              order, 1.0, 0.0, Compare::at_least,
                              "the issue asks for the convergence to be reported; ≥ 1 is the weakest claim of "
                              "convergence (the free curved surfaces are represented by a staircase of particles, O(h))",
-                             "Kamojjala, Brannon, Sadeghirad & Guilkey 2015, Eng. Comput. 31:193 (generalized vortex)",
+                             "[kamojjala2015] (generalized vortex)",
                              "", kProblem});
     }
   }

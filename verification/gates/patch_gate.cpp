@@ -1,4 +1,4 @@
-// Patch tests (SPEC §3) for every registered model × setting × influence
+// Patch tests (docs/models/lps.md) for every registered model × setting × influence
 // function. Per (model, setting) one gate per claim holds the worst case over
 // the seven influence functions and all fields; every individual value is in the
 // report table of that (model, setting).
@@ -142,7 +142,7 @@ void patch_suite(const std::string& model, Setting setting) {
     summary.push_back({wn, block.sites(), block.system().n_real(), num(pmb_iso_error), num(bound), dev_worst_here});
   }
 
-  const std::string src = "SPEC §3 (patch tests); Silling et al. 2007; Le, Chan & Schwartz 2014 (2D)";
+  const std::string src = "docs/models/lps.md (patch tests); [silling2007]; [le-chan-schwartz2014] (2D)";
   const std::string force_reason =
       "Rounding only: the bond vectors are exact lattice multiples, the displacement differences u_j − u_i carry a "
       "relative rounding of ≤ (|x|/|ξ|)·u ≤ 16u, and the force is a sum of ≤ 123 (3D) pair terms, each ≤ ~scale: "
@@ -172,7 +172,7 @@ void patch_suite(const std::string& model, Setting setting) {
                      "second moment Σ ω β |ξ|² n⊗n V = (m/d) I by the lattice symmetries); the ±H symmetrisation "
                      "leaves O(|H|²) = 1e-14 of the nonlinear kinematics; rounding of ≤ 123 terms of relative "
                      "accuracy 16u is ≤ 2e-13. 1e-12 keeps a margin of 5 over the sum.",
-                     src + "; SPEC §3 (c)", "", "patch_tests"});
+                     src + "; docs/models/lps.md (c)", "", "patch_tests"});
   if (has_prediction)
     test::record_gate({"patch." + tag + ".energy_lattice",
                        "For a small affine field the strain energy density (symmetrised in ±H) shall equal its "
@@ -183,7 +183,7 @@ void patch_suite(const std::string& model, Setting setting) {
                        "The symmetrised measurement differs from the linear energy by O(|H|²) = 1e-14 relative; "
                        "rounding of sums of ≤ 123 terms, each accurate to ~16u, is ≤ 2e-13. A wrong coefficient "
                        "or moment would be ≥ 1e-3.",
-                       src + "; SPEC §3 (b)", "", "patch_tests"});
+                       src + "; docs/models/lps.md (b)", "", "patch_tests"});
   if (model == "lps") {
     test::record_gate({"patch." + tag + ".energy_isotropic",
                        "Under small isotropic expansion the LPS energy density shall equal the classical one to "
@@ -193,7 +193,7 @@ void patch_suite(const std::string& model, Setting setting) {
                        "With u = s x every bond has e = s|ξ| exactly, so θ = d·s and the deviatoric extension "
                        "vanishes for the discrete m; what is left is the rounding of u_j − u_i (≤ 16u relative) "
                        "and of the sums (≤ 123 terms): ≤ 2e-13.",
-                       src + "; SPEC §3 (b)", "", "patch_tests"});
+                       src + "; docs/models/lps.md (b)", "", "patch_tests"});
     test::record_gate(
         {"patch." + tag + ".energy_deviatoric",
          "For any small affine field the LPS energy density error |W/W_classical − 1| shall not exceed the "

@@ -4,7 +4,7 @@
 //      fixed non-affine configuration with a partial crack (regression_cases.cpp)
 //      equal the gold written by `regold`, for all 7 influence functions.
 //  reference_data.*  the paper numbers file carries provenance and a source for
-//      every number, and seed 001 table 4.2 as stored reproduces our micromodulus.
+//      every number, and Deryugin et al. 2023 table 4.2 as stored reproduces our micromodulus.
 // This gate only reads; `build/verification/tools/regold` rewrites the files
 // (reference_data/README.md).
 #include <gtest/gtest.h>
@@ -80,13 +80,13 @@ TEST(FastRegression, ForcesMatchGold) {
                        "few ulp and a family sum of ≤ 123 terms by ≤ 123·u relative to the sum of |terms|, i.e. "
                        "≲ 1e-14 of the largest value. 1e-12 keeps a margin of 100, while any change of a constant, "
                        "influence function, partial volume or kinematics moves the values by ≥ 1e-8.",
-                       "reference_data/README.md; regold provenance attributes of the file", "", "regression"});
+                       "[pdmpm] docs/design.md (gold data); reference_data/README.md; regold provenance attributes of the file", "", "regression"});
   }
   test::record_gate({"regression.gold_complete",
                      "Every model × setting × influence case shall have gold in reference_data/regression_forces.h5 "
                      "(a new model needs a regold; measured: number of cases missing)",
                      static_cast<double>(missing), 0.0, 0.0, test::Compare::abs, "A count; none may be missing.",
-                     "verification/support/regression_cases.cpp", "", "regression"});
+                     "[pdmpm] docs/verification/regression.md; verification/support/regression_cases.cpp", "", "regression"});
   const std::string root = "/";
   json prov = json::array();
   for (const char* k : {"git_sha", "tree", "date", "command", "compiler", "flags"})
@@ -126,10 +126,10 @@ TEST(FastRegression, PaperNumbersCarrySourcesAndReproduceTable42) {
                      "reference_data/paper_numbers.h5 shall carry provenance (git sha, date, command, compiler) and a "
                      "source for every number (measured: number of missing attributes)",
                      static_cast<double>(missing), 0.0, 0.0, test::Compare::abs, "A count; none may be missing.",
-                     "DESIGN.md (gold data with provenance); reference_data/README.md", "", "regression"});
+                     "[pdmpm] docs/design.md (gold data with provenance); reference_data/README.md", "", "regression"});
   EXPECT_GT(rows.size(), 20u);
 
-  // Seed 001 table 4.2 as stored: c = k E/((1−2ν)πδ⁴) vs our c = 3E/(2π(1−2ν)I₃).
+  // Deryugin et al. 2023 table 4.2 as stored: c = k E/((1−2ν)πδ⁴) vs our c = 3E/(2π(1−2ν)I₃).
   const double E = 200e9, nu = 0.25, delta = 3.015e-3;
   double worst = 0.0;
   for (pd::Influence w : pd::all_influences) {
@@ -141,12 +141,12 @@ TEST(FastRegression, PaperNumbersCarrySourcesAndReproduceTable42) {
     worst = std::max(worst, std::abs(printed / ours - 1.0));
   }
   test::record_gate({"reference_data.seed001_table42",
-                     "Seed 001 table 4.2 as stored in reference_data/paper_numbers.h5 shall reproduce our 3D PMB "
+                     "Deryugin et al. 2023 table 4.2 as stored in reference_data/paper_numbers.h5 shall reproduce our 3D PMB "
                      "micromodulus for the six influence functions of the table (measured: worst relative difference)",
                      worst, 0.0, 256 * std::numeric_limits<double>::epsilon(), test::Compare::abs,
                      "Both are exact expressions in double; the exponential form amplifies the rounding of e by "
                      "3e/(3e−8) ≈ 53 (see constants_gate.cpp, table42_tolerance_eps): ≤ 256ε.",
-                     "seed 001 §4 table 4.2; constants.hpp", "", "regression"});
+                     "[deryugin2023] §4 table 4.2; constants.hpp", "", "regression"});
   test::record_data("regression", "03_paper_numbers",
                     {{"kind", "table"},
                      {"title", "Reference numbers stored in reference_data/paper_numbers.h5"},

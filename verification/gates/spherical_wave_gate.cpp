@@ -1,5 +1,5 @@
-// The spherically symmetric elastic wave of seed 001 §9 (SPEC §8 spherical_wave,
-// §9): PMB with the six influence functions of seed 001 table 4.1 (ν = 1/4) and
+// The spherically symmetric elastic wave of Deryugin et al. 2023 §9 (docs/verification/spherical_wave.md,
+// §9): PMB with the six influence functions of Deryugin et al. 2023 table 4.1 (ν = 1/4) and
 // LPS with ω = 1 and ω = 1/r (ν = 0.33), compared with the closed-form solution
 // (solver/analytic/spherical_wave.hpp). How runs are set up and how errors are
 // measured: spherical_wave_run.hpp. Convergence studies: convergence_gate.cpp.
@@ -38,7 +38,7 @@ using namespace test::wave;
 
 const char* problem = "spherical_wave";
 
-// The paper's relative errors at t = 3×10⁻⁵ s (seed 001 §9; metric and reading not
+// The paper's relative errors at t = 3×10⁻⁵ s (Deryugin et al. 2023 §9; metric and reading not
 // stated), as stored in reference_data/paper_numbers.h5.
 struct PaperErrors {
   double lps_inverse_distance = 0, lps_constant = 0;
@@ -124,7 +124,7 @@ TEST(FastSphericalWave, ClosedFormMatchesOdeIntegration) {
   const std::string why =
       "the integrator is asked for 1e-14 relative per step over ~10³ steps; 1e-10 leaves room for the "
       "accumulated round-off and still catches any error in a coefficient of the closed form";
-  const std::string src = "SPEC §9: F' + (c_p/r₀)F = −c_p r₀ g(t); GSL gsl_odeiv2 rk8pd";
+  const std::string src = "[pdmpm] docs/verification/spherical_wave.md: F' + (c_p/r₀)F = −c_p r₀ g(t); GSL gsl_odeiv2 rk8pd";
   test::record_gate({"spherical_wave.analytic.potential_vs_ode", "The closed-form potential F(t) shall agree with GSL ODE integration to 1e-10 of max|F|",
                      worst_F, 1e-10, 0, test::Compare::at_most, why, src, "", problem});
   test::record_gate({"spherical_wave.analytic.displacement_vs_ode", "u_r(r, t) from the closed form shall agree with u_r from the integrated F to 1e-10 of max|u_r|",
@@ -155,7 +155,7 @@ TEST(FastSphericalWave, ParticleCountIs531414InBothReadings) {
                        std::string("The ") + name(r) + " reading (" + (r == Reading::octant ? "[0, 40 cm]³, Δx = 0.5 cm" : "[−40, 40 cm]³, Δx = 1 cm") +
                            ") shall have N = 81³ − 27 = 531414 particles outside the inner cube, as the seed states",
                        static_cast<double>(counts[0]), static_cast<double>(paper_particles), 0, test::Compare::abs,
-                       "a count: exact", "seed 001 §9: N = 531414; SPEC §8", "", problem});
+                       "a count: exact", "[deryugin2023] §9: N = 531414; docs/verification/spherical_wave.md", "", problem});
   }
 }
 
@@ -191,16 +191,16 @@ void fast_octant(const Case& c, const std::string& key, const FastBound& bound, 
                      "Octant at Δx = 1 cm (" + std::to_string(rc.n_real) + " particles), " + c.label +
                          ": relative L2 error of u_r at t = 3×10⁻⁵ s shall stay within the bound from the convergence study",
                      mc.l2, bound.l2_coarse, 0, test::Compare::at_most, bound_reason,
-                     "convergence study (verification/gates/convergence_gate.cpp), seed 001 §9", "", problem});
+                     "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", "", problem});
   test::record_gate({"spherical_wave.fast." + key + ".paper_l2",
                      "Octant at the paper's Δx = 0.5 cm (the 79 480 particles within 21 cm), " + c.label +
                          ": relative L2 error of u_r at t = 3×10⁻⁵ s shall stay within the bound from the convergence study",
                      mp.l2, bound.l2_paper, 0, test::Compare::at_most, bound_reason,
-                     "convergence study (verification/gates/convergence_gate.cpp), seed 001 §9", "", problem});
+                     "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", "", problem});
   test::record_gate({"spherical_wave.fast." + key + ".refinement_ratio",
                      "Halving Δx from 1 cm to 0.5 cm (m = 3.015) shall reduce the L2 error (" + c.label + ")",
                      mp.l2 / mc.l2, 1.0, 0, test::Compare::at_most,
-                     "δ-convergence: the error must fall as δ = 3.015 Δx halves", "convergence (issue 4 item 5a)", "", problem});
+                     "δ-convergence: the error must fall as δ = 3.015 Δx halves", "[pdmpm] docs/verification/spherical_wave.md (convergence); [deryugin2023] §9", "", problem});
 }
 
 // Bounds: the Full-tier study measured e₂(3×10⁻⁵ s) with these very runs (the
@@ -298,7 +298,7 @@ TEST(FullSphericalWave, PaperResolution) {
                       "Stable step = Lanczos on a small copy (0 when an earlier case had the same configuration); set-up = particles, "
                       "families, model, first forces; run = velocity Verlet to 7×10⁻⁵ s "
                       "with the error evaluations. Peak RSS = the process's resident-set high-water mark during the case "
-                      "(reset before each case). Paper (seed 001 §9, reading and metric not stated): LPS ω = 1/r " + percent(paper.lps_inverse_distance) +
+                      "(reset before each case). Paper (Deryugin et al. 2023 §9, reading and metric not stated): LPS ω = 1/r " + percent(paper.lps_inverse_distance) +
                           ", LPS ω = 1 " + percent(paper.lps_constant) + "."}});
 
   // Profiles along +x at each time (seed figs 9.1 and 9.4 show t = 3×10⁻⁵ s).
@@ -315,10 +315,10 @@ TEST(FullSphericalWave, PaperResolution) {
       const std::string prefix = std::string("0") + (rd == Reading::octant ? "2" : "3") + "_profile_" + name(rd) + "_t" + tnames[k];
       test::record_data(problem, prefix + "_pmb",
                         profile_plot("PMB, six ω: u_r along +x at t = " + tt + " (" + name(rd) + ", Δx = " + fmt(100 * paper_spacing(rd)) + " cm)", pmb,
-                                     "Seed fig 9.1. Particles on the x axis; the analytic curve is u_r(r, t) of SPEC §9."));
+                                     "Deryugin et al. 2023 fig. 9.1. Particles on the x axis; the analytic curve is u_r(r, t) of docs/verification/analytic_solutions.md."));
       test::record_data(problem, prefix + "_lps",
                         profile_plot("LPS, ω = 1 and ω = 1/r: u_r along +x at t = " + tt + " (" + name(rd) + ", Δx = " + fmt(100 * paper_spacing(rd)) + " cm)", lps,
-                                     "Seed fig 9.4."));
+                                     "Deryugin et al. 2023 fig. 9.4."));
     }
   }
 
@@ -396,7 +396,7 @@ TEST(FullSphericalWave, PaperResolution) {
     const auto& lr = results.at("octant/lps_inverse_distance").metrics[2];
     const auto& l1 = results.at("octant/lps_constant").metrics[2];
     h << "</table><p>Peak resident memory of any case: " << worst_rss << " MB (2 OpenMP threads; wall times on a shared 2-core "
-      << "machine). Paper anchors (seed 001 §9; metric and reading not stated): LPS ω = 1/r " << percent(paper.lps_inverse_distance)
+      << "machine). Paper anchors (Deryugin et al. 2023 §9; metric and reading not stated): LPS ω = 1/r " << percent(paper.lps_inverse_distance)
       << ", LPS ω = 1 " << percent(paper.lps_constant) << ". Ours in the octant reading: e<sub>2</sub> " << 100 * lr.l2 << " % and "
       << 100 * l1.l2 << " %, i.e. " << lr.l2 / paper.lps_inverse_distance << " and " << l1.l2 / paper.lps_constant
       << " times the paper's; e<sub>∞</sub> " << 100 * lr.max << " % and " << 100 * l1.max << " %. "
@@ -419,15 +419,15 @@ TEST(FullSphericalWave, PaperResolution) {
                      "PMB with the quadratic ω shall have the smallest L2 error of the six PMB influence functions at t = 3×10⁻⁵ s (octant, paper resolution)",
                      results.at("octant/pmb_quadratic").metrics[2].l2 / best_other, 1.0, 0, test::Compare::at_most,
                      "a ranking: the ratio to the best of the other five must be below 1",
-                     "seed 001 §9: \"the best convergence to the analytic solution is with the quadratic bond stiffness function\"", "", problem});
+                     "[deryugin2023] §9: \"the best convergence to the analytic solution is with the quadratic bond stiffness function\"", "", problem});
   test::record_gate({"spherical_wave.paper.lps_inverse_distance_better",
                      "LPS with ω = 1/r shall be closer to the analytic solution than LPS with ω = 1 at t = 3×10⁻⁵ s (octant, paper resolution)",
                      results.at("octant/lps_inverse_distance").metrics[2].l2 / results.at("octant/lps_constant").metrics[2].l2, 1.0, 0,
-                     test::Compare::at_most, "a ranking: the ratio must be below 1", "seed 001 §9: " + percent(paper.lps_inverse_distance) + " (ω = 1/r) < " + percent(paper.lps_constant) + " (ω = 1)", "", problem});
+                     test::Compare::at_most, "a ranking: the ratio must be below 1", "[deryugin2023] §9: " + percent(paper.lps_inverse_distance) + " (ω = 1/r) < " + percent(paper.lps_constant) + " (ω = 1)", "", problem});
   double worst_rss = 0;
   for (const auto& [k, r] : results) worst_rss = std::max(worst_rss, r.peak_rss_mb);
   test::record_gate({"spherical_wave.paper.memory", "Every paper-resolution case shall fit the 24 GB machine (peak resident set, MB)",
-                     worst_rss, 24000, 0, test::Compare::at_most, "the machine's memory (issue 4)", "issue 4", "MB", problem});
+                     worst_rss, 24000, 0, test::Compare::at_most, "the machine's memory (issue 4)", "[pdmpm] docs/verification/spherical_wave.md; [deryugin2023] §9", "MB", problem});
 }
 
 // The octant with symmetry planes at Δx is the full cube at Δx: same step,
@@ -450,7 +450,7 @@ TEST(FullSphericalWave, OctantEqualsCubeAtOneCentimetre) {
                            ", e₂ and e_∞ at 3 and 7 ×10⁻⁵ s)",
                        diff, 1e-9, 0, test::Compare::at_most,
                        "the same lattice operator on the symmetric modes; only summation order differs (round-off ~1e-13)",
-                       "mirror ghosts (solver/bc/symmetry.hpp)", "", problem});
+                       "[pdmpm] docs/discretisation.md (mirror ghosts, solver/bc/symmetry.hpp)", "", problem});
   }
 }
 
@@ -554,7 +554,7 @@ TEST(FullSphericalWave, TruncatedOctantIsExactBeforeTheFrontArrives) {
                      "the reported errors carry 3–4 significant digits, so the cut must not move them by 1e-4; the front "
                      "(c_p = 6.1 km/s) is at 19.4 cm and only the lattice's small precursor ahead of it (the force reaches δ per "
                      "step) touches the cut: measured 2e-6",
-                     "causality of the wave", "", problem});
+                     "[pdmpm] docs/verification/spherical_wave.md (causality of the wave)", "", problem});
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
 #pragma once
-// The spherical-wave problem of seed 001 §9 (SPEC §8), run in process: one of
+// The spherical-wave problem of Deryugin et al. 2023 §9 (docs/verification/), run in process: one of
 // the four scene files (octant / full-cube reading × "layer" / "points" source),
 // varied in model, influence function, ν, Δx, m and partial volume, stepped with
 // velocity Verlet to exact sample times and compared with the closed form
@@ -36,7 +36,7 @@
 
 namespace pdmpm::test::wave {
 
-// Seed 001 §9.
+// Deryugin et al. 2023 §9.
 constexpr double r0 = 0.01, r1 = 0.40, period = 1e-5, amplitude = 1e-4;
 constexpr double youngs = 200e9, density = 7850.0;
 constexpr double t_end = 7e-5, t_compare = 3e-5;
@@ -59,7 +59,7 @@ struct Case {
   std::string key() const { return model + "_" + std::string(pd::name(influence)); }
 };
 
-// The eight cases of seed 001 §9: PMB (ν = 1/4) with the six ω of table 4.1,
+// The eight cases of Deryugin et al. 2023 §9: PMB (ν = 1/4) with the six ω of table 4.1,
 // LPS (ν = 0.33) with ω = 1 and ω = 1/r.
 inline std::vector<Case> paper_cases() {
   using pd::Influence;

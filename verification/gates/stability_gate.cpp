@@ -129,7 +129,7 @@ void bounded_at_09() {
                        "(λ_max Δt²/4) U = q U with q = 0.81 at 0.9 × Δt_crit, so (1 − q)E ≤ I_h = E₀ (u₀ = 0). "
                        "The bound is reached only if all energy sits in the top mode as strain energy; an unstable "
                        "step would grow without bound. Strains ≈ 1e-6 keep the body linear.",
-                       "Hairer, Lubich & Wanner §IX; Lanczos estimate of solver/time/stable_step.hpp", "",
+                       "[hairer2006] §IX; Lanczos estimate of solver/time/stable_step.hpp", "",
                        "stability"});
     rows.push_back({model, dim_name(D), p.n_real, lz.dt, lz.iterations, dt, emax, 1.0 / (1.0 - q), idev});
     test::record_data("stability", "bounded_plot_" + model + "_" + dim_name(D),
@@ -211,14 +211,14 @@ void unstable_at_15(json& rows) {
                            static_cast<double>(r.status), 3.0, 0.0, test::Compare::abs,
                            "An exit status is exact. At 1.5 × Δt_crit the top mode grows by |z| ≈ 6.9 per step "
                            "(z² + 7z + 1 = 0), so the energy check stops the run within a few tens of steps.",
-                           "DESIGN.md (unstable runs stop with a message); README exit statuses", "", "stability"});
+                           "[pdmpm] docs/design.md (unstable runs stop with a message); README exit statuses", "", "stability"});
         test::record_gate({"stability.unstable_message." + tag,
                            "The message of that run shall name the step and the stable-step estimate, and the "
                            "estimate printed shall be the Lanczos step of the scene (" +
                                model + ", " + dim_name(D) + "; measured: |printed/in-process − 1|, 1 if absent)",
                            found ? std::abs(printed_estimate / in_process - 1.0) : 1.0, 0.0, 1e-5, test::Compare::abs,
                            "The message prints 6 significant digits: relative rounding ≤ 5e-6.",
-                           "solver/sim/pd_run.cpp stable(); DESIGN.md", "", "stability"});
+                           "[pdmpm] docs/design.md; solver/sim/pd_run.cpp stable()", "", "stability"});
       } else {
         test::record_gate({"stability.silling_askari_conservative." + tag,
                            "The Silling–Askari step shall not exceed the Lanczos step (" + model + ", " +
@@ -227,7 +227,7 @@ void unstable_at_15(json& rows) {
                            "S&A is a Gershgorin-type bound on λ_max, so it can only underestimate the step; "
                            "Lanczos Ritz values approach λ_max from below, so its step can only overestimate. "
                            "Ratio ≥ 1 is the definition, no slack.",
-                           "Silling & Askari 2005; solver/time/stable_step.hpp", "", "stability"});
+                           "[silling-askari2005]; solver/time/stable_step.hpp", "", "stability"});
         // S&A is a lower bound of the true step: 1.5 × S&A is unstable only when Lanczos/S&A < 1.5.
         const int expected = ratio > 1.5 ? 0 : 3;
         test::record_gate({"stability.silling_askari_1.5." + tag,
@@ -238,7 +238,7 @@ void unstable_at_15(json& rows) {
                            static_cast<double>(r.status), static_cast<double>(expected), 0.0, test::Compare::abs,
                            "Exact: an exit status. The ratio is far enough from 1.5 here for the growth (or its "
                            "absence) to be unambiguous within 400 steps (see the table).",
-                           "Silling & Askari 2005 (Gershgorin-type bound, never above the true limit)", "",
+                           "[silling-askari2005] (Gershgorin-type bound, never above the true limit)", "",
                            "stability"});
       }
       rows.push_back({model, dim_name(D), estimate, dt_sa, dt_l, ratio, r.status,
@@ -312,7 +312,7 @@ void lps_patch(const test::PatchConfig& cfg, Worst& force, Worst& rotation, Wors
 
 void record_lps_extreme(const std::string& tag, const std::string& what, const Worst& force, const Worst& rotation,
                         const Worst& theta, const Worst& iso, const Worst& lattice) {
-  const std::string src = "SPEC §3 patch tests; Silling et al. 2007; Le, Chan & Schwartz 2014";
+  const std::string src = "docs/models/lps.md (patch tests); [silling2007]; [le-chan-schwartz2014]";
   const std::string reason =
       "Rounding only (see patch_tests): ≤ n_b·16u of the scale with n_b ≤ 2145 bonds (m = 8, 3D) or ≤ 123 (m ≤ "
       "3.015), i.e. ≤ 4e-12 resp. 2e-13; the force scale M|H|/Δx uses the longitudinal modulus, which grows with "
@@ -559,7 +559,7 @@ TEST(FastStability, DegenerateBodies) {
                      "infinite S&A step, a RunError from Lanczos, and a run shall be refused with an InputError "
                      "naming the cause (measured: 1 if all hold)",
                      single_ok && scene_refuses ? 1.0 : 0.0, 1.0, 0.0, test::Compare::abs,
-                     "A yes/no property.", "DESIGN.md (bad input is an error, not a crash or a NaN)", "",
+                     "A yes/no property.", "[pdmpm] docs/design.md (bad input is an error, not a crash or a NaN)", "",
                      "stability"});
 
   // Two particles: an oscillator with a closed-form frequency; Lanczos finds the same λ.
@@ -580,7 +580,7 @@ TEST(FastStability, DegenerateBodies) {
                      "The Verlet recurrence r_{n+1} − 2r_n + r_{n−1} = −ω²Δt² r_n is exact for a linear oscillator; "
                      "the amplitude 1e-12 m (strain 1e-9) leaves a nonlinear relative error ~1e-9 at most and the "
                      "second difference loses ~1e-13 to cancellation.",
-                     "Derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)", "",
+                     "[pdmpm] derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)", "",
                      "stability"});
   test::record_gate({"stability.degenerate.two_particles_lanczos",
                      "For two particles the Lanczos estimate shall find λ_max = ω² of the pair (measured: worst "
@@ -588,7 +588,7 @@ TEST(FastStability, DegenerateBodies) {
                      worst_lanczos, 0.0, 1e-6, test::Compare::abs,
                      "λ_max is the only non-zero eigenvalue; the Lanczos operator is a finite difference at strain "
                      "1e-7, whose nonlinear error is ~1e-7 relative.",
-                     "solver/time/stable_step.cpp", "", "stability"});
+                     "[silling-askari2005]; solver/time/stable_step.cpp", "", "stability"});
 
   // Empty family: one particle of a block loses all its bonds (both sides).
   bool empty_ok = true;
@@ -627,7 +627,7 @@ TEST(FastStability, DegenerateBodies) {
                      "A particle whose bonds are all broken shall get zero force, energy and θ, damage 1, and every "
                      "other value shall stay finite (measured: 1 if all hold)",
                      empty_ok ? 1.0 : 0.0, 1.0, 0.0, test::Compare::abs, "A yes/no property.",
-                     "DESIGN.md (no crash, no NaN); SPEC §2 (damage)", "", "stability"});
+                     "[pdmpm] docs/design.md (no crash, no NaN); docs/models/pmb.md (damage)", "", "stability"});
   test::record_data("stability", "degenerate",
                     {{"kind", "table"},
                      {"title", "Degenerate bodies"},
@@ -688,7 +688,7 @@ TEST(FastStability, StiffAndSoftMaterialsScale) {
                        "products with E differs, a few u per operation, amplified by the 300 steps of an oscillating "
                        "system (≤ steps × ~100u ≈ 3e-12 in practice). 1e-10 separates rounding from any "
                        "E-dependent term (e.g. an absolute tolerance), which would be O(1) at E = 1 or 1e15.",
-                       "Dimensional analysis of ρü = f(u; E) with f ∝ E", "", "stability"});
+                       "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/stability.md)", "", "stability"});
   }
   test::record_data("stability", "scaling",
                     {{"kind", "table"},

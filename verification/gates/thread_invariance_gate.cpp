@@ -108,7 +108,7 @@ void invariance(json& rows) {
                        total, 0.0, 0.0, test::Compare::abs,
                        "Bitwise identity is the claim: every loop gathers per particle in a fixed order and the "
                        "reductions are integer counts or serial, so no rounding may depend on the thread count.",
-                       "DESIGN.md (gather-only loops, identical results for any thread count)", "",
+                       "[pdmpm] docs/design.md (gather-only loops, identical results for any thread count)", "",
                        "thread_invariance"});
     rows.push_back({model, dim, static_cast<double>(one.u.size()), steps, one.broken_bonds, one.contact_pairs_max,
                     static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df),

@@ -1,5 +1,5 @@
 #pragma once
-// Patch tests (SPEC §3) on a lattice block, shared by the patch and stability
+// Patch tests (docs/models/lps.md) on a lattice block, shared by the patch and stability
 // gates: an affine displacement u = H x must give zero force on interior
 // particles at any magnitude of H; for small H the energy density and the
 // dilatation must match their linear predictions; a rigid rotation must give

@@ -28,15 +28,15 @@ struct Number {
   std::string unit, source, note;
 };
 
-// Numbers from the source papers (SPEC §8) and standard benchmarks. Typed once,
+// Numbers from the source papers (docs/verification/) and standard benchmarks. Typed once,
 // here; gates read them from reference_data/paper_numbers.h5.
 std::vector<Number> paper_numbers() {
   const double e = std::numbers::e;
-  const std::string t42 = "seed 001 (Russian PD influence functions) §4, table 4.2, c column (3D)";
+  const std::string t42 = "Deryugin et al. 2023 (Russian PD influence functions) §4, table 4.2, c column (3D)";
   const std::string c42 = "coefficient k of c = k E / ((1 - 2 nu) pi delta^4)";
-  const std::string s004a = "seed 004 (Chinese plane-strain state-based PD) §5.1, text and fig. 3";
-  const std::string s004b = "seed 004 §5.2, text and fig. 5";
-  const std::string s000 = "seed 000 (Persian adaptive SBPD-MPM) §3-2, table 1 (same machine: Intel 7th generation, 2.7 GHz)";
+  const std::string s004a = "Gu & Zhou 2017 (Chinese plane-strain state-based PD) §5.1, text and fig. 3";
+  const std::string s004b = "Gu & Zhou 2017 §5.2, text and fig. 5";
+  const std::string s000 = "Noorian et al. (Persian adaptive SBPD-MPM) §3-2, table 1 (same machine: Intel 7th generation, 2.7 GHz)";
   return {
       {"/seed001_table42/constant", 6.0, "", t42, c42 + "; printed 6E/((1-2nu) pi delta^4)"},
       {"/seed001_table42/triangular", 30.0, "", t42, c42 + "; printed 30E/((1-2nu) pi delta^4)"},
@@ -46,10 +46,10 @@ std::vector<Number> paper_numbers() {
        c42 + "; printed 3eE/(4(1-2nu) pi delta^4 (3e-8)), the parentheses around 3e-8 lost in print"},
       {"/seed001_table42/gaussian", 3.0 * e / (e - 2.0), "", t42,
        c42 + "; printed 3eE/((1-2nu) pi delta^4 (e-2)), the parentheses around e-2 lost in print"},
-      {"/spherical_wave/time", 3e-5, "s", "seed 001 §9, text after fig. 9.4", "time at which the errors below are quoted"},
-      {"/spherical_wave/lps_inverse_distance_error", 0.0336, "", "seed 001 §9, text after fig. 9.4",
+      {"/spherical_wave/time", 3e-5, "s", "Deryugin et al. 2023 §9, text after fig. 9.4", "time at which the errors below are quoted"},
+      {"/spherical_wave/lps_inverse_distance_error", 0.0336, "", "Deryugin et al. 2023 §9, text after fig. 9.4",
        "relative error of the LPS run with omega = 1/|xi| (3.36 %)"},
-      {"/spherical_wave/lps_constant_error", 0.0405, "", "seed 001 §9, text after fig. 9.4",
+      {"/spherical_wave/lps_constant_error", 0.0405, "", "Deryugin et al. 2023 §9, text after fig. 9.4",
        "relative error of the LPS run with omega = 1 (4.05 %)"},
       {"/hole_plate/no_crack", 0.0133e-6, "s", s004a,
        "plate not yet cracked; fig. 3(a) caption says 0.0133 us, the text 0.013 us"},

@@ -8,7 +8,7 @@
 namespace pdmpm::analytic {
 namespace {
 
-// Seed 001 §9 with the PMB material: c_p = √(240 GPa / 7850).
+// Deryugin et al. 2023 §9 with the PMB material: c_p = √(240 GPa / 7850).
 SphericalWave seed_wave() {
   SphericalWave w;
   w.r0 = 0.01;

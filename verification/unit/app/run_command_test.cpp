@@ -118,7 +118,7 @@ TEST(Cli, ConstantsPrintsEveryInfluenceFunction) {
   const auto j = nlohmann::json::parse(r.output);
   for (const char* s : {"1d", "plane_stress", "plane_strain", "3d"})
     EXPECT_EQ(j["settings"][s]["influence"].size(), 7u) << s;
-  // Seed 001 table 4.2, constant ω: c = 6E / ((1 − 2ν) π δ⁴).
+  // Deryugin et al. 2023 table 4.2, constant ω: c = 6E / ((1 − 2ν) π δ⁴).
   const double c = j["settings"]["3d"]["influence"]["constant"]["pmb_micromodulus_c"];
   EXPECT_NEAR(c, 6 * 200e9 / (0.5 * M_PI * std::pow(0.003, 4)), 1e-6 * c);
   const auto table = run("constants --G0 100");

@@ -171,7 +171,7 @@ namespace {
 
 // A 3D block stretched homogeneously (grid velocity v = L x on every node, nearly
 // isochoric so the mean stress and η grow slowly): every particle carries the same
-// stress. It must fail when the SPEC criterion is met — ε̄_p ≥ d₀ exp(c η) ("strain"),
+// stress. It must fail when the criterion of docs/models/mpm.md is met — ε̄_p ≥ d₀ exp(c η) ("strain"),
 // or Σ Δε̄_p / ε_f(η) ≥ 1 ("accumulated") — evaluated here from the code's own ε̄_p
 // and η outputs, and carry no stress afterwards.
 TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {

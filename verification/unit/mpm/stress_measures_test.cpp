@@ -1,4 +1,4 @@
-// Von Mises stress, triaxiality and the ductile fracture strain of SPEC §6.
+// Von Mises stress, triaxiality and the ductile fracture strain of docs/models/planned.md.
 #include "solver/mpm/stress_measures.hpp"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Closed-form bond constants (SPEC §2–3) against values worked out by hand,
+// Closed-form bond constants (docs/models/pmb.md and docs/models/lps.md) against values worked out by hand,
 // their signs, and how they scale with δ, E and G₀.
 #include "solver/pd/constants.hpp"
 
@@ -131,7 +131,7 @@ TEST(Constants, LpsDilatationTermVanishesAtThePmbPoissonRatio) {
 }
 
 TEST(Constants, LpsWithInverseDistanceEqualsPmbAtQuarterPoissonRatio) {
-  // Seed 001 §5: with ω = 1/|ξ| and ν = 1/4, LPS reduces to PMB with constant ω.
+  // Deryugin et al. 2023 §5: with ω = 1/|ξ| and ν = 1/4, LPS reduces to PMB with constant ω.
   // The LPS pair force (t_ij + t_ji) = 2 B ω e / m with ω = δ/|ξ| must equal
   // PMB's c e/|ξ|, i.e. 2Bδ/m = c.
   const double d = 3e-3, h = 1e-3;
@@ -150,7 +150,7 @@ TEST(Constants, LpsWithInverseDistanceEqualsPmbAtQuarterPoissonRatio) {
 }
 
 TEST(Constants, MadenciOterkusByHand) {
-  // SPEC §3 with E = 1, ν = 1/4 (G = 0.4, K = 2/3, κ₂ = λ + G = 0.8), δ = 1, unit measure.
+  // docs/models/lps.md with E = 1, ν = 1/4 (G = 0.4, K = 2/3, κ₂ = λ + G = 0.8), δ = 1, unit measure.
   const Elastic m{1.0, 0.25, 1.0};
   const auto m3 = madenci_oterkus(Setting::solid3d, m, 1.0, 1.0);
   EXPECT_NEAR(m3.a, 0.5 * (2.0 / 3.0 - 5.0 * 0.4 / 3.0), 1e-15);

@@ -11,7 +11,7 @@
 namespace pdmpm::pd {
 namespace {
 
-// f_i = Σ_j (c_s/δ)(|y| − d_ij) y/|y| V_j over every j with |y| < d_ij (seed 001 eq 6.2–6.4).
+// f_i = Σ_j (c_s/δ)(|y| − d_ij) y/|y| V_j over every j with |y| < d_ij (Deryugin et al. 2023 eq 6.2–6.4).
 template <int D>
 std::vector<Vec<D>> brute_force(const System<D>& sys, const ContactParameters& prm, double c) {
   const auto& p = sys.particles;

@@ -1,4 +1,4 @@
-// Influence functions (seed 001 table 4.1, plus ω = δ/r): values at the ends
+// Influence functions (Deryugin et al. 2023 table 4.1, plus ω = δ/r): values at the ends
 // and the middle of the horizon, and name parsing.
 #include "solver/pd/influence.hpp"
 

@@ -37,7 +37,7 @@ LpsAndPmb evaluate_lps_and_pmb(test::BlockSpec spec, bool continuum_weighted_vol
   return r;
 }
 
-// Seed 001 §5 (after [3]): with ω = 1/|ξ| and ν = 1/4, LPS coincides with PMB
+// Deryugin et al. 2023 §5 (after [3]): with ω = 1/|ξ| and ν = 1/4, LPS coincides with PMB
 // (constant micromodulus) away from boundaries: A = 3K − 5G = 0 leaves the pair
 // force 2·15G (δ/|ξ|) e / m, which is PMB's c e/|ξ| with c = 30Gδ/m = 12E/(πδ⁴).
 // Compare the force on an interior particle under a non-affine field.
@@ -63,7 +63,7 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
   EXPECT_NEAR((f_lps - f_pmb).norm() / f_pmb.norm(), 0.0, 1e-12);
 }
 
-// With the continuum weighted volume (seed 004 eq 15) every particle has the same m,
+// With the continuum weighted volume (Gu & Zhou 2017 eq 15) every particle has the same m,
 // so at ν = 1/4 and ω = 1/|ξ| the LPS pair force B ω e (1/m_i + 1/m_j) is PMB's
 // c e/|ξ| at every particle, boundary ones included.
 TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {

@@ -1,4 +1,4 @@
-// Partial-volume factor β (SPEC §1, seed 001 eq 7.2) at the ends and middle of
+// Partial-volume factor β (docs/discretisation.md, Deryugin et al. 2023 eq 7.2) at the ends and middle of
 // the ramp for each option, and the family radius each option needs.
 #include "solver/pd/partial_volume.hpp"
 

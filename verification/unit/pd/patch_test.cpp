@@ -1,4 +1,4 @@
-// Patch tests (SPEC §3): affine displacement → zero force on interior particles
+// Patch tests (docs/models/lps.md): affine displacement → zero force on interior particles
 // at any magnitude; small strain → classical energy density and θ = tr ε.
 #include <gtest/gtest.h>
 
