@@ -44,7 +44,9 @@ def load_bibliography(path: Path) -> dict[str, Reference]:
             if not line.strip() or line.startswith("#"):
                 break
             lines.append(line)
-        refs[m.group(1)] = Reference(m.group(1), plain(" ".join(lines)))
+        entry = plain(" ".join(lines))
+        label = f"[{m.group(1)}]"  # the entry's own bold label, shown by the page separately
+        refs[m.group(1)] = Reference(m.group(1), entry[len(label):].lstrip() if entry.startswith(label) else entry)
     return refs
 
 

@@ -122,6 +122,10 @@ struct MpmSpec {
   mpm::Failure failure;
 };
 
+// Which method integrates the body. `pd` and `mpm` follow from [model] type;
+// `hybrid` (the adaptive SBPD–MPM coupling) is reserved: no scene selects it yet.
+enum class Method { pd, mpm, hybrid };
+
 struct Scene {
   std::string file, id, description;
   int dimension = 3;
@@ -133,7 +137,8 @@ struct Scene {
 
   pd::Elastic material;
   std::optional<double> critical_stretch, fracture_energy;
-  std::string model = "pmb";
+  Method method = Method::pd;
+  std::string model = "pmb";  // the PD model's name (model table), or "mpm"
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
   bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
@@ -141,7 +146,6 @@ struct Scene {
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
 
-  bool is_mpm() const { return model == "mpm"; }
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
@@ -158,6 +162,9 @@ struct Scene {
 // Field names `output.fields` may list (PD models; MPM adds its own).
 const std::vector<std::string>& field_names();
 const std::vector<std::string>& mpm_field_names();
+
+// PD parts of a scene (scene_pd.cpp): the PD model's keys of [model].
+void read_pd_model(const TomlReader& model, Scene& s);
 
 // MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
 // (read from the material table's own reader) and the [mpm] table.

@@ -80,7 +80,7 @@ void read_discretization(const TomlReader& d, Scene& s) {
   const auto delta = d.optional_number("horizon");
   if (ratio.has_value() && delta.has_value())
     d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
-  if (!ratio && !delta && !s.is_mpm())
+  if (!ratio && !delta && !s.method == Method::mpm)
     d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
   if (ratio || delta) {  // MPM alone needs no horizon
     s.delta = ratio ? *ratio * s.spacing : *delta;
@@ -109,46 +109,19 @@ void read_discretization(const TomlReader& d, Scene& s) {
 
 void read_model(const TomlReader& m, Scene& s) {
   s.model = m.string("type");
-  bool known = s.model == "mpm";
   std::string names;
-  for (const auto& n : pd::model_names()) {
-    known = known || n == s.model;
-    names += (names.empty() ? "" : ", ") + n;
-  }
-  if (!known) m.fail("type", "must be one of " + names + ", mpm; got \"" + s.model + "\"");
-  if (s.is_mpm()) {
+  for (const auto& n : pd::model_names()) names += n + ", ";
+  if (s.model == "mpm") {
+    s.method = Method::mpm;
     s.mpm.emplace();  // defaults; [material] and [mpm] fill it
     for (const char* pd_only : {"influence", "damage", "contact"})
-      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (pmb, lps)");
+      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (" + names.substr(0, names.size() - 2) + ")");
     m.finish();
     return;
   }
-  if (auto w = m.optional_string("influence")) {
-    auto inf = pd::parse_influence(*w);
-    if (!inf) m.fail("influence", "must be one of " + pd::influence_names() + "; got \"" + *w + "\"");
-    s.influence = *inf;
-  }
-  s.damage = m.boolean("damage", true);
-  if (auto bt = m.optional_string("break_timing")) {
-    if (*bt != "before_force" && *bt != "after_force")
-      m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
-    s.break_after_force = *bt == "after_force";
-  }
-  if (auto wv = m.optional_string("weighted_volume")) {
-    if (s.model != "lps") m.fail("weighted_volume", "only for type = \"lps\"");
-    if (*wv != "discrete" && *wv != "continuum")
-      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, Gu & Zhou 2017 eq 15); got \"" + *wv + "\"");
-    s.continuum_weighted_volume = *wv == "continuum";
-  }
-  if (auto c = m.optional_table("contact")) {
-    s.contact.enabled = c->boolean("enabled", true);
-    if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
-    if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
-    if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
-    s.contact.bonded_pairs = c->boolean("bonded_pairs", false);
-    c->finish();
-  }
-  m.finish();
+  if (!pd::find_model(s.model)) m.fail("type", "must be one of " + names + "mpm; got \"" + s.model + "\"");
+  s.method = Method::pd;
+  read_pd_model(m, s);
 }
 
 void read_material(const TomlReader& m, Scene& s) {
@@ -157,7 +130,7 @@ void read_material(const TomlReader& m, Scene& s) {
   const auto K = m.optional_number("bulk_modulus");
   if (E.has_value() == K.has_value()) m.fail("youngs_modulus", "give exactly one of youngs_modulus and bulk_modulus");
   // MPM materials take any ν in (−1, ½); the PD models state their own range.
-  const auto [lo, hi] = s.is_mpm() ? std::pair{-1.0, 0.5} : pd::make_model<3>(s.model)->poisson_range(s.setting);
+  const auto [lo, hi] = s.method == Method::mpm ? std::pair{-1.0, 0.5} : pd::model_info(s.model).poisson_range(s.setting);
   const auto nu = m.optional_number("poissons_ratio");
   std::ostringstream fixed;
   fixed << lo;
@@ -175,7 +148,7 @@ void read_material(const TomlReader& m, Scene& s) {
   if (E) s.material.E = m.positive("youngs_modulus", *E);
   else s.material.E = 3.0 * m.positive("bulk_modulus", *K) * (1.0 - 2.0 * s.material.nu);
   if (!(s.material.E > 0.0)) m.fail("bulk_modulus", "gives E ≤ 0 with this Poisson's ratio");
-  if (s.is_mpm()) {
+  if (s.method == Method::mpm) {
     for (const char* pd_only : {"critical_stretch", "fracture_energy"})
       if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (MPM fails particles by [material.failure])");
     read_mpm_material(m, s);
@@ -195,7 +168,7 @@ void read_time(const TomlReader& t, Scene& s) {
   if (integ == "verlet") s.time.integrator = Integrator::verlet;
   else if (integ == "adr") s.time.integrator = Integrator::adr;
   else t.fail("integrator", "must be \"verlet\" (dynamic) or \"adr\" (adaptive dynamic relaxation, quasi-static); got \"" + integ + "\"");
-  if (s.is_mpm()) {
+  if (s.method == Method::mpm) {
     // MPM is explicit with its own grid-based stable step ([mpm] damping for quasi-static runs).
     if (s.time.integrator != Integrator::verlet) t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
     for (const char* pd_only : {"stable_step", "tolerance", "max_steps", "load_steps"})
@@ -391,7 +364,7 @@ void read_output(const TomlReader& o, Scene& s) {
   if (s.output.every && *s.output.every < 1) o.fail("every", "must be ≥ 1");
   s.output.history_every = o.optional_integer("history_every");
   if (s.output.history_every && *s.output.history_every < 1) o.fail("history_every", "must be ≥ 1");
-  const auto& allowed = s.is_mpm() ? mpm_field_names() : field_names();
+  const auto& allowed = s.method == Method::mpm ? mpm_field_names() : field_names();
   s.output.fields = allowed;
   if (o.has("fields")) {
     s.output.fields = o.strings("fields");
@@ -434,7 +407,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_model(root.table("model"), s);
   read_discretization(root.table("discretization"), s);
   read_material(root.table("material"), s);
-  if (s.is_mpm()) {
+  if (s.method == Method::mpm) {
     if (auto t = root.optional_table("mpm")) read_mpm_options(*t, s);
   } else if (root.has("mpm")) {
     root.fail("mpm", "only for model type = \"mpm\"");
@@ -448,9 +421,9 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_loads(root, s);
   read_crack(root, s);
   if (auto o = root.optional_table("output")) read_output(*o, s);
-  else s.output.fields = s.is_mpm() ? mpm_field_names() : field_names();
+  else s.output.fields = s.method == Method::mpm ? mpm_field_names() : field_names();
   root.finish();
-  if (s.is_mpm()) check_mpm_scene(s);
+  if (s.method == Method::mpm) check_mpm_scene(s);
   return s;
 }
 

@@ -7,14 +7,6 @@
 namespace pdmpm::pd {
 
 template <int D>
-std::pair<double, double> Lps<D>::poisson_range(Setting s) const {
-  // Plane stress needs ν < 1 for κ₂ and ν < 1/2 for a 3D-consistent material;
-  // elsewhere K = E / (3(1 − 2ν)) must stay finite. ν = 1/2 itself is excluded.
-  (void)s;
-  return {-1.0, 0.5};
-}
-
-template <int D>
 void Lps<D>::initialise(const System<D>& sys) {
   k_ = lps_coefficients(sys.setting, sys.material);
   if (sys.continuum_weighted_volume)

@@ -13,7 +13,6 @@ template <int D>
 class Lps final : public Model<D> {
  public:
   std::string name() const override { return "lps"; }
-  std::pair<double, double> poisson_range(Setting s) const override;
   void initialise(const System<D>& sys) override;
   void refresh(const System<D>& sys, const std::vector<Index>& changed) override;
   std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) override;

@@ -1,10 +1,13 @@
 #pragma once
 // A peridynamic force model: the same verbs for every model, chosen by name
-// from a scene. Adding a model = one class + one line in model.cpp, and every
-// typed verification test then covers it.
+// from a scene. Adding a model = one class + one line in the model table
+// (model.cpp), and every verification test that loops over the table covers it;
+// tests ask the table for a model's properties, never for its name.
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "solver/pd/system.hpp"
@@ -25,8 +28,6 @@ class Model {
  public:
   virtual ~Model() = default;
   virtual std::string name() const = 0;
-  // Admissible Poisson's ratio interval [lo, hi] for this model and setting.
-  virtual std::pair<double, double> poisson_range(Setting s) const = 0;
   // Precompute what depends on the reference configuration and live bonds.
   virtual void initialise(const System<D>& sys) = 0;
   // The live bonds of these real particles changed (particle kinds changed):
@@ -42,11 +43,37 @@ class Model {
   virtual double stiffness_row_sum(const System<D>& sys, Index i) const { (void)sys; (void)i; return -1.0; }
 };
 
-template <int D>
-using ModelFactory = std::function<std::unique_ptr<Model<D>>()>;
+// One row of the model table: what a scene, a run and a test need to know of a
+// model without knowing the model.
+struct ModelInfo {
+  std::string name;
+  // Forces involve the dilatation of every neighbour, so an affine field is
+  // force-free only 2δ (not δ) from a boundary.
+  bool state_based = false;
+  // A pair potential fixes Poisson's ratio by the setting (Cauchy relation).
+  bool pair_potential = false;
+  bool plastic = false;
+  std::function<std::unique_ptr<Model<1>>()> make1;
+  std::function<std::unique_ptr<Model<2>>()> make2;
+  std::function<std::unique_ptr<Model<3>>()> make3;
 
-// Names of the registered models and a factory by name (nullptr if unknown).
+  // The ν the model requires in a setting, if it fixes one: ¼ in 3D and plane
+  // strain, ⅓ in plane stress for a pair potential; none in a 1D bar.
+  std::optional<double> fixed_poisson(Setting s) const;
+  // Admissible Poisson's ratio interval [lo, hi] in a setting.
+  std::pair<double, double> poisson_range(Setting s) const;
+  template <int D>
+  std::unique_ptr<Model<D>> make() const;
+};
+
+// Every registered model, in a fixed order.
+const std::vector<ModelInfo>& model_table();
+// The row of a model by name; nullptr if unknown.
+const ModelInfo* find_model(std::string_view name);
+// The row of a model the caller knows exists (throws std::invalid_argument otherwise).
+const ModelInfo& model_info(std::string_view name);
 std::vector<std::string> model_names();
+// A new model by name (nullptr if unknown).
 template <int D>
 std::unique_ptr<Model<D>> make_model(const std::string& name);
 

@@ -5,14 +5,6 @@
 namespace pdmpm::pd {
 
 template <int D>
-std::pair<double, double> Pmb<D>::poisson_range(Setting s) const {
-  // A pair potential fixes ν (Cauchy relation): 1/4 in 3D and plane strain, 1/3 in plane stress.
-  if (s == Setting::plane_stress) return {1.0 / 3.0, 1.0 / 3.0};
-  if (s == Setting::bar1d) return {0.0, 0.5};  // ν plays no role in a bar
-  return {0.25, 0.25};
-}
-
-template <int D>
 void Pmb<D>::initialise(const System<D>& sys) {
   c_ = pmb_micromodulus(sys.influence, sys.setting, sys.material, sys.delta, sys.measure);
 }

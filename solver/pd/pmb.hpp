@@ -9,7 +9,6 @@ template <int D>
 class Pmb final : public Model<D> {
  public:
   std::string name() const override { return "pmb"; }
-  std::pair<double, double> poisson_range(Setting s) const override;
   void initialise(const System<D>& sys) override;
   std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) override;
   double stiffness_row_sum(const System<D>& sys, Index i) const override;

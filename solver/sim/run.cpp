@@ -14,12 +14,18 @@ namespace {
 
 template <int D>
 RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
-  if (scene.is_mpm()) {
-    auto setup = build_mpm<D>(scene);
-    return run_mpm<D>(scene, setup, options);
+  switch (scene.method) {
+    case io::Method::mpm: {
+      auto setup = build_mpm<D>(scene);
+      return run_mpm<D>(scene, setup, options);
+    }
+    case io::Method::pd: {
+      auto setup = build_pd<D>(scene);
+      return run_pd<D>(scene, setup, options);
+    }
+    case io::Method::hybrid: break;
   }
-  auto setup = build_pd<D>(scene);
-  return run_pd<D>(scene, setup, options);
+  throw InputError(scene.file, "model.type", "the adaptive SBPD–MPM hybrid is not implemented yet");
 }
 
 }  // namespace

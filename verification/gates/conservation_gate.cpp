@@ -47,7 +47,7 @@ std::string body_scene(const std::string& model, int D, const std::string& shape
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
   s += shape;
   s += "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n";
-  if (model != "pmb") s += "poissons_ratio = 0.3\n";
+  if (!pd::model_info(model).pair_potential) s += "poissons_ratio = 0.3\n";
   if (critical_stretch > 0) s += "critical_stretch = " + std::to_string(critical_stretch) + "\n";
   s += "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";
   return s;

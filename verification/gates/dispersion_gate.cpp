@@ -54,7 +54,7 @@ struct Discretisation {
 };
 
 pd::Elastic material_for(const std::string& model, Setting s) {
-  if (model == "pmb") return {E, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, rho};
+  if (const auto nu = pd::model_info(model).fixed_poisson(s)) return {E, *nu, rho};
   return {E, 0.3, rho};
 }
 
@@ -79,7 +79,7 @@ std::string slab_scene(const std::string& model, Setting s, int N, int width, co
   if (D == 1) t += "area = 1e-6\n";
   t += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
   t += "[material]\ndensity = " + g17(rho) + "\nyoungs_modulus = " + g17(E) + "\n";
-  if (model != "pmb") t += "poissons_ratio = " + g17(mat.nu) + "\n";
+  if (!pd::model_info(model).pair_potential) t += "poissons_ratio = " + g17(mat.nu) + "\n";
   t += "[model]\ntype = \"" + model + "\"\ninfluence = \"" + str(pd::name(d.influence)) + "\"\n[time]\nsteps = 1\n";
   const char* axes[] = {"x", "y", "z"};
   for (int a = 0; a < D; ++a) {

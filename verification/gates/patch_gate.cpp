@@ -38,11 +38,10 @@ constexpr double large_strain = 0.3;
 
 std::string str(std::string_view v) { return std::string(v); }
 
-// The material of each model in each setting: PMB's ν is fixed by the Cauchy
-// relation (¼, plane stress ⅓); LPS takes ν = 0.3.
+// The material of each model in each setting: a pair potential's ν is fixed by
+// the Cauchy relation (¼, plane stress ⅓); other models take ν = 0.3.
 pd::Elastic material_for(const std::string& model, Setting s) {
-  if (model == "pmb") return {200e9, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, 7850.0};
-  return {200e9, 0.3, 7850.0};
+  return {200e9, pd::model_info(model).fixed_poisson(s).value_or(0.3), 7850.0};
 }
 
 struct Field {
@@ -150,7 +149,7 @@ void patch_suite(const std::string& model, Setting setting) {
   test::record_gate({"patch." + tag + ".affine_force",
                      "An affine displacement u = Hx (isotropic, stretch, simple shear, deviatoric stretch, general mixed H; |H| = 1e-7 "
                      "and 0.3) shall give zero force on every interior particle (farther than " +
-                         std::string(model == "pmb" ? "δ" : "2δ") +
+                         std::string(pd::model_info(model).state_based ? "2δ" : "δ") +
                          " from the boundary), relative to the force scale M|H|/Δx, for all 7 influence functions (" +
                          where + "; worst case: " + at_force + ")",
                      worst_force, 0.0, 1e-12, test::Compare::abs, force_reason, src, "", "patch_tests"});

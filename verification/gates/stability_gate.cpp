@@ -66,7 +66,7 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
   if (D == 1) s += "area = 1e-6\n";
   s += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
   s += "[material]\ndensity = 7850\nyoungs_modulus = " + g17(E) + "\n";
-  if (model != "pmb") s += "poissons_ratio = 0.3\n";
+  if (!pd::model_info(model).pair_potential) s += "poissons_ratio = 0.3\n";
   s += "[model]\ntype = \"" + model + "\"\n[time]\n" + time;
   std::string value = "[\"" + g17(sigma) + " * min(t / " + g17(ramp) + ", 1)\"";
   for (int a = 1; a < D; ++a) value += ", 0";
@@ -91,7 +91,7 @@ void bounded_at_09() {
                        "\nspacing = 1e-3\nhorizon_ratio = 3.015\n" +
                        (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
                        "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n" +
-                       (model != "pmb" ? "poissons_ratio = 0.3\n" : "") + "[model]\ntype = \"" + model +
+                       (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") + "[model]\ntype = \"" + model +
                        "\"\n[time]\nsteps = 1\n";
     auto setup = sim::build_pd<D>(io::parse_scene_text(text, "bounded"));
     auto& p = setup.system.particles;
@@ -444,7 +444,7 @@ pd::System<D> lattice_body(const std::vector<IVec<D>>& sites, const std::string&
   for (const auto& site : sites) sys.particles.push_back(site, std::pow(1e-3, D) * (D == 3 ? 1.0 : measure));
   sys.particles.n_real = static_cast<Index>(sites.size());
   sys.setting = s;
-  sys.material = {200e9, model == "pmb" ? (s == pd::Setting::plane_stress ? 1.0 / 3.0 : 0.25) : 0.3, 7850.0};
+  sys.material = {200e9, pd::model_info(model).fixed_poisson(s).value_or(0.3), 7850.0};
   sys.delta = 3.015e-3;
   sys.measure = D == 3 ? 1.0 : measure;
   sys.connect();
@@ -596,7 +596,7 @@ TEST(FastStability, DegenerateBodies) {
     test::PatchConfig cfg;
     cfg.model = model;
     cfg.setting = pd::Setting::plane_strain;
-    cfg.material = {200e9, model == "pmb" ? 0.25 : 0.3, 7850.0};
+    cfg.material = {200e9, pd::model_info(model).fixed_poisson(cfg.setting).value_or(0.3), 7850.0};
     std::vector<IVec<2>> sites;
     for (int x = 0; x < 12; ++x)
       for (int y = 0; y < 12; ++y) sites.emplace_back(x, y);

@@ -34,7 +34,7 @@ std::string impact_scene(const std::string& model, int D) {
     s += "[[shape]]\ntype = \"box\"\nmin = [0.0105, 0.002, 0.001]\nmax = [0.0155, 0.006, 0.005]\n";
   }
   s += "[material]\ndensity = 7850\nyoungs_modulus = 200e9\ncritical_stretch = 1e-3\n";
-  if (model != "pmb") s += "poissons_ratio = 0.25\n";
+  if (!pd::model_info(model).pair_potential) s += "poissons_ratio = 0.25\n";
   s += "[model]\ntype = \"" + model + "\"\n[model.contact]\nenabled = true\n[time]\nsteps = 1\n";
   return s;
 }

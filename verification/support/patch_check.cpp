@@ -9,7 +9,7 @@
 
 namespace pdmpm::test {
 
-double interior_margin(const std::string& model, double delta) { return (model == "pmb" ? 1.0 : 2.0) * delta; }
+double interior_margin(const std::string& model, double delta) { return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta; }
 
 double default_measure(pd::Setting s) {
   switch (s) {

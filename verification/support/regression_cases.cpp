@@ -38,7 +38,7 @@ Result compute_dim(const Case& c) {
   spec.setting = c.setting;
   spec.influence = c.influence;
   spec.measure = default_measure(c.setting);
-  spec.material = {200e9, c.model == "pmb" ? (c.setting == pd::Setting::plane_stress ? 1.0 / 3.0 : 0.25) : 0.3, 7850.0};
+  spec.material = {200e9, pd::model_info(c.model).fixed_poisson(c.setting).value_or(0.3), 7850.0};
   auto sys = make_block<D>(spec);
   auto& p = sys.particles;
   const double dx = spec.spacing;

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <string>
 
+#include "solver/pd/model.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -80,7 +82,7 @@ TEST(Cli, UsageErrorsExitWithTwo) {
 
 // A tiny scene of each model in 2D and 3D runs and reports bond updates per second.
 TEST(Cli, SmallScenesOfEachModelRun) {
-  for (const std::string model : {"pmb", "lps"})
+  for (const auto& model : pdmpm::pd::model_names())
     for (int dim : {2, 3}) {
       std::ostringstream s;
       s << "[scene]\nid = \"tiny_" << model << dim << "\"\n[discretization]\ndimension = " << dim << "\n";

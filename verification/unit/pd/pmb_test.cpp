@@ -59,9 +59,10 @@ TEST(Pmb, BondsBreakOnBothSidesAtTheSameStep) {
 
 TEST(Pmb, PoissonRatioIsFixedByTheSetting) {
   Pmb<3> m;
-  EXPECT_EQ(m.poisson_range(Setting::solid3d), std::make_pair(0.25, 0.25));
-  EXPECT_EQ(m.poisson_range(Setting::plane_strain), std::make_pair(0.25, 0.25));
-  EXPECT_EQ(m.poisson_range(Setting::plane_stress), std::make_pair(1.0 / 3.0, 1.0 / 3.0));
+  const auto& info = model_info(m.name());
+  EXPECT_EQ(info.poisson_range(Setting::solid3d), std::make_pair(0.25, 0.25));
+  EXPECT_EQ(info.poisson_range(Setting::plane_strain), std::make_pair(0.25, 0.25));
+  EXPECT_EQ(info.poisson_range(Setting::plane_stress), std::make_pair(1.0 / 3.0, 1.0 / 3.0));
 }
 
 }  // namespace

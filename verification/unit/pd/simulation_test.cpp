@@ -7,6 +7,8 @@
 
 #include <algorithm>
 
+#include <fmt/format.h>
+
 #include "solver/io/scene.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/mpm_setup.hpp"
@@ -17,6 +19,13 @@ namespace pdmpm::pd {
 namespace {
 
 using core::ParticleKind;
+
+// ν for a plane-stress plate: a pair potential's fixed value, else 0.3 (MPM too).
+std::string poisson_text(const std::string& model) {
+  const auto* info = find_model(model);
+  const auto nu = info ? info->fixed_poisson(Setting::plane_stress) : std::nullopt;
+  return nu ? fmt::format("{}", *nu) : "0.3";
+}
 
 // The same free 2D steel plate for both methods; `model` is "lps", "pmb" or "mpm".
 io::Scene plate(const std::string& model, const std::string& extra = "", double length = 0.03) {
@@ -36,7 +45,7 @@ max = [)" + std::to_string(length) + R"(, 0.012]
 [material]
 density = 7850
 youngs_modulus = 200e9
-poissons_ratio = )" + std::string(model == "pmb" ? "0.3333333333333333" : "0.3") + R"(
+poissons_ratio = )" + poisson_text(model) + R"(
 )" + extra + R"(
 [model]
 type = ")" + model + R"("

@@ -1,0 +1,45 @@
+// The PD parts of a scene: the PD model's keys of [model] (influence function,
+// damage, break timing, weighted volume, contact).
+#include <string>
+
+#include "solver/io/scene.hpp"
+#include "solver/io/toml_reader.hpp"
+#include "solver/pd/model.hpp"
+
+namespace pdmpm::io {
+
+void read_pd_model(const TomlReader& m, Scene& s) {
+  if (auto w = m.optional_string("influence")) {
+    auto inf = pd::parse_influence(*w);
+    if (!inf) m.fail("influence", "must be one of " + pd::influence_names() + "; got \"" + *w + "\"");
+    s.influence = *inf;
+  }
+  s.damage = m.boolean("damage", true);
+  if (auto bt = m.optional_string("break_timing")) {
+    if (*bt != "before_force" && *bt != "after_force")
+      m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
+    s.break_after_force = *bt == "after_force";
+  }
+  if (auto wv = m.optional_string("weighted_volume")) {
+    if (!pd::model_info(s.model).state_based) {
+      std::string state_based;
+      for (const auto& info : pd::model_table())
+        if (info.state_based) state_based += (state_based.empty() ? "\"" : " or \"") + info.name + "\"";
+      m.fail("weighted_volume", "only for type = " + state_based);
+    }
+    if (*wv != "discrete" && *wv != "continuum")
+      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, Gu & Zhou 2017 eq 15); got \"" + *wv + "\"");
+    s.continuum_weighted_volume = *wv == "continuum";
+  }
+  if (auto c = m.optional_table("contact")) {
+    s.contact.enabled = c->boolean("enabled", true);
+    if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
+    if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
+    s.contact.bonded_pairs = c->boolean("bonded_pairs", false);
+    c->finish();
+  }
+  m.finish();
+}
+
+}  // namespace pdmpm::io
