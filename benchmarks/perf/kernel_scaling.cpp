@@ -123,28 +123,28 @@ json kernel_scaling(const Options& o) {
         {"bandwidth_bound_bond_sides_per_s", {{"1", bw_1 / bytes.total}, {std::to_string(threads), bw_n / bytes.total}}},
         {"cycles_per_bond_side_1_thread", mhz > 0 ? mhz * 1e6 / rate1 : 0.0}};
     const std::string name = model == "pmb" ? "PMB" : "LPS";
-    target({"performance.threads_" + model,
-            fmt::format("the {} force kernel shall run at least 1.8× faster on 2 threads than on 1 ({:.3g} bond sides)",
+    target({.id = "performance.threads_" + model,
+            .claim = fmt::format("the {} force kernel shall run at least 1.8× faster on 2 threads than on 1 ({:.3g} bond sides)",
                         name, sides),
-            scaling.value, 1.8, 0.0, test::Compare::at_least,
-            fmt::format("a target (issue 6). Ratio of medians of {} interleaved repetitions; bootstrap 95 % interval "
+            .measured = scaling.value, .expected = 1.8, .tolerance = 0.0, .compare = test::Compare::at_least,
+            .tolerance_reason = fmt::format("a target (issue 6). Ratio of medians of {} interleaved repetitions; bootstrap 95 % interval "
                         "[{:.3g}, {:.3g}]. Gather-only loops need no atomics; the two cores share the last-level cache "
                         "and the memory bus: the triad in the same run scales {:.2f}× (interval [{:.3g}, {:.3g}]); "
                         "in-cache problem {:.2f}×",
                         o.reps, scaling.lo, scaling.hi, triad_scaling.value, triad_scaling.lo, triad_scaling.hi,
                         median(c1[m]) / median(c2[m])),
-            "[pdmpm] docs/design.md (performance targets)", "×", problem});
+            .source = "[pdmpm] docs/design.md (performance targets)", .unit = "×", .problem = problem});
     if (model == "pmb")
-      target({"performance.bandwidth_fraction_pmb",
-              fmt::format("the PMB force kernel on {} threads shall move at least 50 % of the memory bandwidth a triad "
+      target({.id = "performance.bandwidth_fraction_pmb",
+              .claim = fmt::format("the PMB force kernel on {} threads shall move at least 50 % of the memory bandwidth a triad "
                           "reaches on as many threads, counting {:.2f} bytes per bond side from the data layout",
                           threads, bytes.total),
-              frac_n, 0.5, 0.0, test::Compare::at_least,
-              fmt::format("a target (issue 6), with a written account when missed: the same kernel on a problem that "
+              .measured = frac_n, .expected = 0.5, .tolerance = 0.0, .compare = test::Compare::at_least,
+              .tolerance_reason = fmt::format("a target (issue 6), with a written account when missed: the same kernel on a problem that "
                           "fits in the last-level cache runs at {:.3g} bond sides/s on 1 thread against {:.3g} from "
                           "memory (×{:.2f}); {:.1f} cycles per bond side at the nominal clock",
                           cache1, rate1, cache1 / rate1, mhz > 0 ? mhz * 1e6 / rate1 : 0.0),
-              "[pdmpm] docs/design.md (performance targets); STREAM triad [mccalpin1995]", "", problem});
+              .source = "[pdmpm] docs/design.md (performance targets); STREAM triad [mccalpin1995]", .unit = "", .problem = problem});
   }
   return out;
 }

@@ -101,22 +101,22 @@ json lammps_side_by_side(const std::string& model, const Options& o) {
   const double ours_rate = evals / median(ours_pair), lmp_rate = evals / median(lmp_pair);
 
   const std::string size = fmt::format("{} particles, {:.3g} bond sides", reference.system.n_real(), sides);
-  target({"performance.lammps_" + model + ".speedup",
-          fmt::format("pdmpm's force evaluation ({}: bond kernel + short-range contact) shall do at least 5× the bond "
+  target({.id = "performance.lammps_" + model + ".speedup",
+          .claim = fmt::format("pdmpm's force evaluation ({}: bond kernel + short-range contact) shall do at least 5× the bond "
                       "evaluations per second per core of LAMMPS {} (its Pair time) on the same 3D problem ({})",
                       model == "pmb" ? "PMB" : "LPS, ω = 1/|ξ|", style, size),
-          speedup.value, 5.0, 0.0, test::Compare::at_least,
-          fmt::format("a target, not a tolerance (issue 6). Ratio of medians of {} interleaved repetitions of {} steps "
+          .measured = speedup.value, .expected = 5.0, .tolerance = 0.0, .compare = test::Compare::at_least,
+          .tolerance_reason = fmt::format("a target, not a tolerance (issue 6). Ratio of medians of {} interleaved repetitions of {} steps "
                       "in one process run, one core each; bootstrap 95 % interval [{:.3g}, {:.3g}]",
                       o.reps, o.steps, speedup.lo, speedup.hi),
-          "[pdmpm] docs/design.md (performance targets); [parks2008]; LAMMPS src/PERI/pair_peri_" + model + ".cpp", "×", problem});
-  target({"performance.lammps_" + model + ".displacement",
-          fmt::format("in the timed runs, the displacement fields of pdmpm and LAMMPS {} shall agree at every particle "
+          .source = "[pdmpm] docs/design.md (performance targets); [parks2008]; LAMMPS src/PERI/pair_peri_" + model + ".cpp", .unit = "×", .problem = problem});
+  target({.id = "performance.lammps_" + model + ".displacement",
+          .claim = fmt::format("in the timed runs, the displacement fields of pdmpm and LAMMPS {} shall agree at every particle "
                       "to 1e-6 of the largest displacement after {} steps", style, o.steps),
-          agree, 1e-6, 0.0, test::Compare::at_most,
-          "same model, partial volumes, contact rule, indenter law and integrator: only round-off differs (as the "
+          .measured = agree, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
+          .tolerance_reason = "same model, partial volumes, contact rule, indenter law and integrator: only round-off differs (as the "
           "elastic LAMMPS gate, lammps_comparison_gate.cpp)",
-          "[parks2008]; [thompson2022]; verification/support/lammps.hpp", "", problem});
+          .source = "[parks2008]; [thompson2022]; verification/support/lammps.hpp", .unit = "", .problem = problem});
 
   return {{"model", model},
           {"lammps_style", style},

@@ -163,12 +163,13 @@ struct Scene {
 const std::vector<std::string>& field_names();
 const std::vector<std::string>& mpm_field_names();
 
+class TomlReader;
+
 // PD parts of a scene (scene_pd.cpp): the PD model's keys of [model].
 void read_pd_model(const TomlReader& model, Scene& s);
 
 // MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
 // (read from the material table's own reader) and the [mpm] table.
-class TomlReader;
 void read_mpm_material(const TomlReader& material, Scene& s);
 void read_mpm_options(const TomlReader& table, Scene& s);
 // Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,

@@ -80,7 +80,7 @@ void read_discretization(const TomlReader& d, Scene& s) {
   const auto delta = d.optional_number("horizon");
   if (ratio.has_value() && delta.has_value())
     d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
-  if (!ratio && !delta && !s.method == Method::mpm)
+  if (!ratio && !delta && s.method != Method::mpm)
     d.fail("horizon_ratio", "give exactly one of horizon_ratio (m = δ/Δx) and horizon (δ in metres)");
   if (ratio || delta) {  // MPM alone needs no horizon
     s.delta = ratio ? *ratio * s.spacing : *delta;

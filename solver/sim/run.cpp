@@ -5,6 +5,7 @@
 #include <fstream>
 #include <utility>
 
+#include "solver/core/error.hpp"
 #include "solver/io/output_directory.hpp"
 #include "solver/sim/mpm_run.hpp"
 #include "solver/sim/pd_run.hpp"

@@ -231,26 +231,26 @@ void momentum_gates(bool spin) {
                     r.rigorous ? "yes" : "no (|f_i| used)"});
     plot["series"].push_back({{"label", model}, {"x", t}, {"y", d}, {"style", "line"}});
     test::record_gate(
-        {id,
-         spin ? "In a free spinning " + std::string(D == 2 ? "disk" : "ball") + " (" + model +
+        {.id = id,
+         .claim = spin ? "In a free spinning " + std::string(D == 2 ? "disk" : "ball") + " (" + model +
                     ", no damage) the angular momentum shall be conserved to rounding over " +
                     std::to_string(r.steps) + " Verlet steps (measured: max |L(t) − L(0)| / Σρ V|x||v|)"
               : "In a free " + std::string(D == 2 ? "plate" : "block") + " (" + model +
                     ") torn apart by its initial velocity (" + std::to_string(r.broken) +
                     " bonds broken) the linear momentum shall be conserved to rounding over " +
                     std::to_string(r.steps) + " Verlet steps (measured: max |P(t) − P(0)| / Σρ V|v|)",
-         r.drift / r.scale, r.bound / r.scale, 0.0, test::Compare::at_most,
-         spin ? "Pair forces act along the deformed bond, so pair torques cancel and Verlet conserves Σ m x × v "
+         .measured = r.drift / r.scale, .expected = r.bound / r.scale, .tolerance = 0.0, .compare = test::Compare::at_most,
+         .tolerance_reason = spin ? "Pair forces act along the deformed bond, so pair torques cancel and Verlet conserves Σ m x × v "
                 "exactly; the bound is the worst-case rounding accumulated over the run: per step (n_b + 5)u Δt "
                 "Σ_i V|x_i| Σ_j|pair term| (family sums, lever arm, x_i − x_j vs y) + 2u Σ ρV|x||v| (velocity "
                 "updates) + u Σ ρV|u||v| (drift), plus 2Nu Σ ρV|x||v| for the final sums."
               : "The pair terms are bitwise antisymmetric, so only rounding changes P; the bound is its worst case "
                 "accumulated over the run: per step (n_b + 3)u Δt Σ_i V Σ_j|pair term| (family sums of ≤ n_b terms) "
                 "+ 2u Σ ρV|v| (velocity updates), plus 2Nu Σ ρV|v| for the final sums.",
-         "Newton's third law for PD pair forces ([silling2000]; [silling2007] §4 for states); velocity Verlet "
+         .source = "Newton's third law for PD pair forces ([silling2000]; [silling2007] §4 for states); velocity Verlet "
          "conserves linear and angular momentum of central pair forces (Hairer, Lubich & Wanner, Geometric "
          "Numerical Integration, §IV.1)",
-         "", "conservation"});
+         .unit = "", .problem = "conservation"});
   }
   test::record_data("conservation", std::string(spin ? "angular_" : "linear_") + dim_name(D),
                     {{"kind", "table"},
@@ -328,29 +328,29 @@ void energy_gates() {
     // Largest bond strain scale: a/c with c the longitudinal speed.
     const double c_long = std::sqrt(setup.system.material.longitudinal_modulus(setup.system.setting) / rho);
     const double strain = a / c_long * std::sqrt(static_cast<double>(D));
-    test::record_gate({id + ".shadow",
-                       "Over 10⁴ velocity-Verlet steps at 0.8 × the Lanczos stable step (" + model + ", " +
+    test::record_gate({.id = id + ".shadow",
+                       .claim = "Over 10⁴ velocity-Verlet steps at 0.8 × the Lanczos stable step (" + model + ", " +
                            dim_name(D) +
                            ", free body, smooth initial velocity) the shadow energy K + U − (Δt²/8)ΣV|f|²/ρ shall "
                            "stay constant (measured: max deviation / E₀)",
-                       shadow_dev, 0.0, 10.0 * strain, test::Compare::abs,
-                       "For the linearised system the shadow energy is an exact invariant of velocity Verlet; the PD "
+                       .measured = shadow_dev, .expected = 0.0, .tolerance = 10.0 * strain, .compare = test::Compare::abs,
+                       .tolerance_reason = "For the linearised system the shadow energy is an exact invariant of velocity Verlet; the PD "
                        "kinematics add relative terms of the order of the strain (≈ a/c_p √D = " +
                            std::to_string(strain) +
                            "), and the Δt² correction multiplies them by ≤ 0.64. 10 × strain covers the constants; "
                            "a secular drift of a non-symplectic scheme would grow with the 10⁴ steps instead.",
-                       "[hairer2006] §IX (modified energy); derivation in "
+                       .source = "[hairer2006] §IX (modified energy); derivation in "
                        "conservation_gate.cpp",
-                       "", "conservation"});
-    test::record_gate({id + ".drift",
-                       "Over the same run the fitted drift of E = K + U (least-squares slope × duration / E₀) shall "
+                       .unit = "", .problem = "conservation"});
+    test::record_gate({.id = id + ".drift",
+                       .claim = "Over the same run the fitted drift of E = K + U (least-squares slope × duration / E₀) shall "
                        "not exceed what a bounded oscillation of the measured amplitude can produce",
-                       drift_E, 1.5 * (gmax - gmin) + drift_I, 0.0, test::Compare::at_most,
-                       "E = I_h + g(t) with g = (Δt²/8)ΣV|f|²/ρ ∈ [g_min, g_max]; the least-squares slope of a signal "
+                       .measured = drift_E, .expected = 1.5 * (gmax - gmin) + drift_I, .tolerance = 0.0, .compare = test::Compare::at_most,
+                       .tolerance_reason = "E = I_h + g(t) with g = (Δt²/8)ΣV|f|²/ρ ∈ [g_min, g_max]; the least-squares slope of a signal "
                        "confined to a band of width a over a window T satisfies |b|T ≤ 1.5a (Σ|t − t̄| / Σ(t − t̄)² = "
                        "3/T), so |b_E|T ≤ 1.5(g_max − g_min) + |b_I|T. A secular drift would exceed it.",
-                       "Velocity Verlet: bounded energy error, no drift ([hairer2006] §IX.8)", "",
-                       "conservation"});
+                       .source = "Velocity Verlet: bounded energy error, no drift ([hairer2006] §IX.8)", .unit = "",
+                       .problem = "conservation"});
     rows.push_back({model, dim_name(D), p.n_real, dt, lz.dt, steps, T, emax, gmax - gmin, shadow_dev, drift_E,
                     drift_I});
     json plot = {{"kind", "plot"},

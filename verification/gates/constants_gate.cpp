@@ -89,12 +89,12 @@ TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
       worst_est = std::max(worst_est, q.relerr());
       rows.push_back({str(pd::name(s)), str(pd::name(w)), mat.nu, closed, q.value, d, q.relerr()});
     }
-    test::record_gate({"constants.pmb_c.quadrature." + str(pd::name(s)),
-                       "The closed-form PMB micromodulus c shall equal c solved from the quadrature of W_PD = "
+    test::record_gate({.id = "constants.pmb_c.quadrature." + str(pd::name(s)),
+                       .claim = "The closed-form PMB micromodulus c shall equal c solved from the quadrature of W_PD = "
                        "W_classical over the horizon for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp", "", "constants"});
+                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
+                       .source = "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp", .unit = "", .problem = "constants"});
   }
   test::record_data(
       "constants", "micromodulus",
@@ -122,12 +122,12 @@ TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
       worst_est = std::max(worst_est, q.relerr());
       rows.push_back({str(pd::name(s)), str(pd::name(w)), closed, q.value, d, q.relerr()});
     }
-    test::record_gate({"constants.lps_m.quadrature." + str(pd::name(s)),
-                       "The closed-form continuum LPS weighted volume m shall equal the quadrature of ∫_H ω|ξ|² dV "
+    test::record_gate({.id = "constants.lps_m.quadrature." + str(pd::name(s)),
+                       .claim = "The closed-form continuum LPS weighted volume m shall equal the quadrature of ∫_H ω|ξ|² dV "
                        "for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp", "", "constants"});
+                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
+                       .source = "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp", .unit = "", .problem = "constants"});
   }
   test::record_data(
       "constants", "weighted_volume",
@@ -155,14 +155,14 @@ TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
       worst_est = std::max(worst_est, q.relerr());
       rows.push_back({str(pd::name(s)), str(pd::name(w)), mat.nu, closed, q.value, d, q.relerr()});
     }
-    test::record_gate({"constants.s0.quadrature." + str(pd::name(s)),
-                       "The closed-form critical stretch s₀(G₀) shall equal s₀ solved from the nested quadrature of "
+    test::record_gate({.id = "constants.s0.quadrature." + str(pd::name(s)),
+                       .claim = "The closed-form critical stretch s₀(G₀) shall equal s₀ solved from the nested quadrature of "
                        "the energy of all bonds crossing a unit crack area, for all 7 influence functions in setting " +
                            str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       worst, 0.0, quadrature_tolerance, test::Compare::abs, quadrature_reason(worst_est),
-                       "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
+                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
+                       .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
                        "ω(ξ) kept inside the integral; constants.hpp",
-                       "", "constants"});
+                       .unit = "", .problem = "constants"});
   }
   test::record_data(
       "constants", "critical_stretch",
@@ -224,14 +224,14 @@ TEST(FastConstants, Seed001Table42ReproducedExactly) {
     const double d = rel_diff(ours, t.value);
     const double tol = table42_tolerance_eps(t.w) * eps;
     rows.push_back({str(pd::name(t.w)), t.form, t.value, ours, d, d / eps, tol});
-    test::record_gate({"constants.seed001_table42." + str(pd::name(t.w)),
-                       "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(pd::name(t.w)) + ", " + t.form +
+    test::record_gate({.id = "constants.seed001_table42." + str(pd::name(t.w)),
+                       .claim = "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(pd::name(t.w)) + ", " + t.form +
                            ", shall equal our general formula c = 3E/(2π(1−2ν)I₃) to rounding",
-                       d, 0.0, tol, test::Compare::abs,
-                       "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
+                       .measured = d, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs,
+                       .tolerance_reason = "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
                        "unit roundoffs per side plus the cancellation in the moments (polynomial ω ≤ 17×, Gaussian "
                        "e/(e−2) ≈ 3.8×, exponential 3e/(3e−8) ≈ 53× on each side), see table42_tolerance_eps.",
-                       "[deryugin2023] §4 eqs 4.6–4.17 and table 4.2", "", "constants"});
+                       .source = "[deryugin2023] §4 eqs 4.6–4.17 and table 4.2", .unit = "", .problem = "constants"});
   }
   test::record_data(
       "constants", "seed001_table42",
@@ -257,36 +257,36 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double spec = 9.0 * E / (pi * thickness * delta * delta * delta);
     const double ours = pd::pmb_micromodulus(Influence::constant, Setting::plane_stress, mat, delta, thickness);
     rows.push_back({"c, plane stress (ν = 1/3)", "9E/(πhδ³)", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({"constants.spec.c_plane_stress_constant",
-                       "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
+    test::record_gate({.id = "constants.spec.c_plane_stress_constant",
+                       .claim = "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
+                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
   }
   {
     const auto mat = pmb_material(Setting::bar1d);
     const double spec = 2.0 * E / (area * delta * delta);
     const double ours = pd::pmb_micromodulus(Influence::constant, Setting::bar1d, mat, delta, area);
     rows.push_back({"c, 1D bar", "2E/(Aδ²)", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({"constants.spec.c_1d_constant", "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
+    test::record_gate({.id = "constants.spec.c_1d_constant", .claim = "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
+                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
   }
   {
     const auto mat = pmb_material(Setting::solid3d);
     const double spec = std::sqrt(5.0 * G0 / (9.0 * mat.bulk() * delta));
     const double ours = pd::critical_stretch(Influence::constant, Setting::solid3d, mat, G0, delta, 1.0);
     rows.push_back({"s₀, 3D", "sqrt(5G₀/(9Kδ))", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({"constants.spec.s0_3d_constant",
-                       "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))", rel_diff(ours, spec),
-                       0.0, tol, test::Compare::abs, reason, "docs/models/pmb.md; [silling-askari2005] §4 (G₀ = πc s₀² δ⁵/10)",
-                       "", "constants"});
+    test::record_gate({.id = "constants.spec.s0_3d_constant",
+                       .claim = "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))", .measured = rel_diff(ours, spec),
+                       .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ = πc s₀² δ⁵/10)",
+                       .unit = "", .problem = "constants"});
   }
   {
     const auto mat = pmb_material(Setting::plane_stress);
     const double spec = std::sqrt(4.0 * pi * G0 / (9.0 * E * delta));
     const double ours = pd::critical_stretch(Influence::constant, Setting::plane_stress, mat, G0, delta, thickness);
     rows.push_back({"s₀, plane stress (ν = 1/3)", "sqrt(4πG₀/(9Eδ))", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({"constants.spec.s0_plane_stress_constant",
-                       "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
-                       rel_diff(ours, spec), 0.0, tol, test::Compare::abs, reason, "[deryugin2023] §4; docs/models/pmb.md", "", "constants"});
+    test::record_gate({.id = "constants.spec.s0_plane_stress_constant",
+                       .claim = "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
+                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
   }
   test::record_data("constants", "spec_constant_forms",
                     {{"kind", "table"},
@@ -400,15 +400,15 @@ TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
       const double d = rel_diff(W_ours.value, W_mo);
       rows.push_back({str(pd::name(s)), load.name, W_mo, W_ours.value, W_cl, d, rel_diff(W_ours.value, W_cl)});
       const std::string load_id = load.name[0] == 'i' ? "isotropic" : "shear";
-      test::record_gate({"constants.madenci_oterkus." + str(pd::name(s)) + "." + load_id,
-                         "Madenci & Oterkus' LPS form (w = δ/|ξ|, their a, b, d) and ours (lps_coefficients, "
+      test::record_gate({.id = "constants.madenci_oterkus." + str(pd::name(s)) + "." + load_id,
+                         .claim = "Madenci & Oterkus' LPS form (w = δ/|ξ|, their a, b, d) and ours (lps_coefficients, "
                          "continuum m, ω = δ/|ξ|) shall give the same continuum energy density for " +
                              std::string(load.name) + " in setting " + str(pd::name(s)),
-                         d, 0.0, quadrature_tolerance, test::Compare::abs,
-                         quadrature_reason(std::max(mo_err / std::abs(W_mo), W_ours.relerr())),
-                         "[madenci-oterkus2014] ch. 4 and [madenci-oterkus2016] (JMPS "
+                         .measured = d, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs,
+                         .tolerance_reason = quadrature_reason(std::max(mo_err / std::abs(W_mo), W_ours.relerr())),
+                         .source = "[madenci-oterkus2014] ch. 4 and [madenci-oterkus2016] (JMPS "
                          "86:192); [noorian] eqs 3–7; docs/models/lps.md",
-                         "", "constants"});
+                         .unit = "", .problem = "constants"});
     }
   }
   test::record_data("constants", "madenci_oterkus",

@@ -125,10 +125,10 @@ TEST(FullConvergence, Study) {
     const double p_last = std::log(el[2] / el[3]) / std::log(2.0);
     order_rows.push_back({c.label, p_true, p_lat, p_last, e.back(), el.back()});
     const bool monotone = e[1] > e[2] && e[2] > e[3];
-    test::record_gate({"convergence.delta." + c.key() + ".monotone",
-                       "At m = 3.015, " + c.label + ": the relative L2 error at t = 3×10⁻⁵ s shall fall at each halving of Δx = 1 → 0.5 → 0.25 cm",
-                       monotone ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least, "a yes/no check of monotone convergence",
-                       "[pdmpm] docs/design.md: convergence gates need ≥ 3 levels and a monotone error", "", problem});
+    test::record_gate({.id = "convergence.delta." + c.key() + ".monotone",
+                       .claim = "At m = 3.015, " + c.label + ": the relative L2 error at t = 3×10⁻⁵ s shall fall at each halving of Δx = 1 → 0.5 → 0.25 cm",
+                       .measured = monotone ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_least, .tolerance_reason = "a yes/no check of monotone convergence",
+                       .source = "[pdmpm] docs/design.md: convergence gates need ≥ 3 levels and a monotone error", .unit = "", .problem = problem});
   }
   test::record_data(problem, "01_delta_table", {{"kind", "table"}, {"title", "(a) Δx → 0 at m = 3.015: error at t = 3×10⁻⁵ s"}, {"columns", row_columns},
                                                 {"rows", rows_a}});

@@ -124,14 +124,14 @@ void run_all(double spacing, const std::string& tag) {
     order += (order.empty() ? "" : ", ") + name;
   }
   const std::string at = " (Δx = " + std::to_string(spacing * 1e3).substr(0, 5) + " mm)";
-  test::record_gate({"disk_impact.symmetry." + tag,
-                     "for every influence function the damage field shall be symmetric under the mirror planes x = 0, y = 0 "
+  test::record_gate({.id = "disk_impact.symmetry." + tag,
+                     .claim = "for every influence function the damage field shall be symmetric under the mirror planes x = 0, y = 0 "
                      "and x = y of the set-up: Σ|φ − φ∘S| / Σφ ≤ 5 %" + at,
-                     worst_asym, 0.05, 0.0, test::Compare::at_most,
-                     "the disk, lattice and indenter are exactly symmetric; mirrored particles sum their bonds in mirrored "
+                     .measured = worst_asym, .expected = 0.05, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "the disk, lattice and indenter are exactly symmetric; mirrored particles sum their bonds in mirrored "
                      "order, so a bond within round-off of s₀ can break a step earlier on one side and fragmentation "
                      "amplifies it. 5 % of the damage allows that and rejects a pattern that is not symmetric (~100 %)",
-                     "[deryugin2023] §10 set-up (docs/verification/disk_impact.md)", "", problem});
+                     .source = "[deryugin2023] §10 set-up (docs/verification/disk_impact.md)", .unit = "", .problem = problem});
   test::record_data(problem, "01_table_" + tag,
                     {{"kind", "table"},
                      {"title", "Broken-bond fraction per influence function" + at},

@@ -214,17 +214,17 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
   // Long-wave limit by Richardson extrapolation of c²(k) = c₀²(1 − αk² + O(k⁴)) over k₁, 2k₁.
   const double c0_default = std::sqrt((4.0 * c2_1 - c2_2) / 3.0) / c_cl;
   if (has_relation)
-    test::record_gate({"dispersion." + tag + ".relation",
-                       "The frequency of a small-amplitude standing plane wave along x (measured from the Verlet "
+    test::record_gate({.id = "dispersion." + tag + ".relation",
+                       .claim = "The frequency of a small-amplitude standing plane wave along x (measured from the Verlet "
                        "time series) shall equal the derived lattice dispersion relation for kδ = 0.15 … 9.3 (" +
                            model + ", " + str(pd::name(s)) +
                            ", ω = 1, seed001, m = 3.015; measured: worst |ω²/ω²_lattice − 1|)",
-                       worst, 0.0, 1e-7, test::Compare::abs,
-                       "The mode is an exact eigenmode of the linearised lattice, so the only differences are the "
+                       .measured = worst, .expected = 0.0, .tolerance = 1e-7, .compare = test::Compare::abs,
+                       .tolerance_reason = "The mode is an exact eigenmode of the linearised lattice, so the only differences are the "
                        "nonlinear kinematics at strain 1e-9 (relative ~1e-9) and rounding of the second difference, "
                        "which loses log10(1/(ωΔt)²) ≤ 4 digits (≤ 1e-12). 1e-7 leaves margin; a wrong coefficient "
                        "or moment would be ≥ 1e-3.",
-                       "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/dispersion.md; [silling2000]", "", "dispersion"});
+                       .source = "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/dispersion.md; [silling2000]", .unit = "", .problem = "dispersion"});
 
   // 2. Long-wave limit on a converged lattice (ω = 1, extended ramp, m = 8.015): within 1 % of classical.
   Discretisation conv;
@@ -234,19 +234,19 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
   const double k1 = pi / slab2.length;
   const double c2a = measure_omega2<D>(slab2, 1, 8) / (k1 * k1), c2b = measure_omega2<D>(slab2, 2, 8) / (4 * k1 * k1);
   const double c0 = std::sqrt((4.0 * c2a - c2b) / 3.0) / c_cl;
-  test::record_gate({"dispersion." + tag + ".long_wave",
-                     "As kδ → 0 the measured wave speed shall approach the classical longitudinal speed of the "
+  test::record_gate({.id = "dispersion." + tag + ".long_wave",
+                     .claim = "As kδ → 0 the measured wave speed shall approach the classical longitudinal speed of the "
                      "setting within 1 % on a lattice whose sums are converged (" +
                          model + ", " + str(pd::name(s)) +
                          ", ω = 1, m = 8.015, extended partial volume; measured: c₀/c_classical − 1, Richardson over "
                          "kδ = " + g17(k1 * conv.ratio * dx).substr(0, 6) + " and twice that)",
-                     c0 - 1.0, 0.0, 0.01, test::Compare::abs,
-                     "1 % is the task's bound. The lattice error of this discretisation is ≤ 0.4 % (table 'long-wave "
+                     .measured = c0 - 1.0, .expected = 0.0, .tolerance = 0.01, .compare = test::Compare::abs,
+                     .tolerance_reason = "1 % is the task's bound. The lattice error of this discretisation is ≤ 0.4 % (table 'long-wave "
                      "error vs m'; lattice_sums: the extended ramp converges at second order); Richardson leaves "
                      "O((kδ)⁴) ≲ 1e-5. At the default ω = 1, seed001, m = 3.015 the lattice sums are not converged "
                      "and the claim does not hold (see the tables): that is reported, not gated.",
-                     "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
-                     "", "dispersion"});
+                     .source = "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
+                     .unit = "", .problem = "dispersion"});
   long_wave_rows.push_back({model, str(pd::name(s)), c_cl, c0_default - 1.0,
                             std::sqrt(relation_omega2<D>(model, s, mat, def, measure, 1e-3 / dx)) / (1e-3 / dx) / c_cl - 1.0,
                             c0 - 1.0});

@@ -236,17 +236,17 @@ void study(const std::string& tier, const std::vector<int>& ns) {
 
   bool monotone = true;
   for (std::size_t k = 1; k < ke.size(); ++k) monotone = monotone && ke[k] > ke[k - 1];
-  test::record_gate({"hole_concentration." + tier + ".monotone",
-                     "The hole-edge σ_yy/σ shall rise monotonically toward K_t as δ halves (δ = 4, 2, 1, 0.5 × base at δ/Δx = 3.015)",
-                     monotone ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least, "a yes/no check of monotone convergence",
-                     "[pdmpm] docs/design.md (convergence gates); [kirsch1898]", "", problem});
-  test::record_gate({"hole_concentration." + tier + ".extrapolated_kt",
-                     "The hole-edge K extrapolated to δ → 0 (fit K∞ − C (δ/a)^½ over the four levels), with the flat-edge surface effect "
+  test::record_gate({.id = "hole_concentration." + tier + ".monotone",
+                     .claim = "The hole-edge σ_yy/σ shall rise monotonically toward K_t as δ halves (δ = 4, 2, 1, 0.5 × base at δ/Δx = 3.015)",
+                     .measured = monotone ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_least, .tolerance_reason = "a yes/no check of monotone convergence",
+                     .source = "[pdmpm] docs/design.md (convergence gates); [kirsch1898]", .unit = "", .problem = problem});
+  test::record_gate({.id = "hole_concentration." + tier + ".extrapolated_kt",
+                     .claim = "The hole-edge K extrapolated to δ → 0 (fit K∞ − C (δ/a)^½ over the four levels), with the flat-edge surface effect "
                      "divided out, shall lie within 3 % of the finite-width reference K_t",
-                     corr_half.limit, kref, 0.03, test::Compare::rel,
-                     "3 % (issue 4): the reference fits differ by 0.5 %, the rest is left for the extrapolation of a slowly (order ½) "
+                     .measured = corr_half.limit, .expected = kref, .tolerance = 0.03, .compare = test::Compare::rel,
+                     .tolerance_reason = "3 % (issue 4): the reference fits differ by 0.5 %, the rest is left for the extrapolation of a slowly (order ½) "
                      "converging, staircase-scattered sequence",
-                     "[kirsch1898]; [heywood1952] and Roark table 17.1 fits of [howland1930] (solver/analytic/kirsch.hpp)", "", problem});
+                     .source = "[kirsch1898]; [heywood1952] and Roark table 17.1 fits of [howland1930] (solver/analytic/kirsch.hpp)", .unit = "", .problem = problem});
 }
 
 TEST(FastHoleConcentration, KtConverges) { study("fast", {5, 10, 20, 40}); }
@@ -291,12 +291,12 @@ TEST(FastHoleConcentration, SpeedAgainstAccuracy) {
                     {{"kind", "table"}, {"title", "Speed against accuracy: every run"}, {"columns", columns}, {"rows", rows}});
   test::record_data(problem, "fast_6_pareto_front",
                     {{"kind", "table"}, {"title", "Runs on the Pareto front"}, {"columns", columns}, {"rows", front}});
-  test::record_gate({"hole_concentration.fast.refinement_pays",
-                     "For every ω and m, the hole-edge error at a/Δx = 20 shall be below the one at a/Δx = 5" +
+  test::record_gate({.id = "hole_concentration.fast.refinement_pays",
+                     .claim = "For every ω and m, the hole-edge error at a/Δx = 20 shall be below the one at a/Δx = 5" +
                          (worst.empty() ? std::string() : " (not so for: " + worst + ")"),
-                     refinement_pays ? 1.0 : 0.0, 1.0, 0, test::Compare::at_least,
-                     "a yes/no check: the speed/accuracy plot is only a trade if more time buys accuracy",
-                     "[pdmpm] docs/verification/hole_plate.md (speed/accuracy study)", "", problem});
+                     .measured = refinement_pays ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_least,
+                     .tolerance_reason = "a yes/no check: the speed/accuracy plot is only a trade if more time buys accuracy",
+                     .source = "[pdmpm] docs/verification/hole_plate.md (speed/accuracy study)", .unit = "", .problem = problem});
 }
 
 TEST(FullHoleConcentration, KtConverges) { study("full", {10, 20, 40, 80}); }

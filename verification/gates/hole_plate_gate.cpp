@@ -61,18 +61,18 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
   for (const auto& s : crack.at("initiation_sites")) site_distance = std::max(site_distance, edge_distance(s));
   if (crack.at("initiation_sites").empty()) site_distance = std::nan("");
 
-  test::record_gate({"hole_plate.initiation_time",
-                     "cracks shall initiate (first particle with φ ≥ ½) within ±15 % of the paper's 11.97 µs", t_init, 11.97e-6,
-                     0.15, test::Compare::rel, "issue 5 sets ±15 % for this seed's times", source, "s", problem});
-  test::record_gate({"hole_plate.initiation_site",
-                     "every crack shall start at a hole edge perpendicular to the load: its origin within 2δ of (40, 20 ± 8) mm",
-                     site_distance, 2.0 * delta, 0.0, test::Compare::at_most,
-                     "a crack's origin is the centroid of its first cracked particles, which lie within a horizon of the "
+  test::record_gate({.id = "hole_plate.initiation_time",
+                     .claim = "cracks shall initiate (first particle with φ ≥ ½) within ±15 % of the paper's 11.97 µs", .measured = t_init, .expected = 11.97e-6,
+                     .tolerance = 0.15, .compare = test::Compare::rel, .tolerance_reason = "issue 5 sets ±15 % for this seed's times", .source = source, .unit = "s", .problem = problem});
+  test::record_gate({.id = "hole_plate.initiation_site",
+                     .claim = "every crack shall start at a hole edge perpendicular to the load: its origin within 2δ of (40, 20 ± 8) mm",
+                     .measured = site_distance, .expected = 2.0 * delta, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "a crack's origin is the centroid of its first cracked particles, which lie within a horizon of the "
                      "stress concentration: 2δ separates the hole's top and bottom from every other place on the plate",
-                     source, "m", problem});
-  test::record_gate({"hole_plate.separation_time",
-                     "the plate shall separate into two pieces within ±15 % of the paper's 15.96 µs", t_sep, 15.96e-6, 0.15,
-                     test::Compare::rel, "issue 5 sets ±15 % for this seed's times", source, "s", problem});
+                     .source = source, .unit = "m", .problem = problem});
+  test::record_gate({.id = "hole_plate.separation_time",
+                     .claim = "the plate shall separate into two pieces within ±15 % of the paper's 15.96 µs", .measured = t_sep, .expected = 15.96e-6, .tolerance = 0.15,
+                     .compare = test::Compare::rel, .tolerance_reason = "issue 5 sets ±15 % for this seed's times", .source = source, .unit = "s", .problem = problem});
 
   double worst_angle = main_cracks.empty() ? std::nan("") : 0.0, max_speed = 0.0;
   for (const auto& c : main_cracks) {
@@ -80,28 +80,28 @@ TEST(FullHolePlate, CracksAgainstSeed004) {
     worst_angle = std::max(worst_angle, std::abs(a - 90.0));
     max_speed = std::max(max_speed, c.at("max_speed").get<double>());
   }
-  test::record_gate({"hole_plate.crack_direction",
-                     "both cracks from the hole shall run within 10° of perpendicular to the load (chord origin → tip)",
-                     worst_angle, 10.0, 0.0, test::Compare::at_most, "issue 5 sets 10°", source, "°", problem});
+  test::record_gate({.id = "hole_plate.crack_direction",
+                     .claim = "both cracks from the hole shall run within 10° of perpendicular to the load (chord origin → tip)",
+                     .measured = worst_angle, .expected = 10.0, .tolerance = 0.0, .compare = test::Compare::at_most, .tolerance_reason = "issue 5 sets 10°", .source = source, .unit = "°", .problem = problem});
   const double resolution = dx / (crack.at("speed_window").get<double>() * cR);  // one site over the fit window, / c_R
-  test::record_gate({"hole_plate.crack_speed",
-                     "no crack from the hole shall outrun the Rayleigh wave speed beyond the speed measurement's resolution",
-                     max_speed, cR * (1.0 + resolution), 0.0, test::Compare::at_most,
-                     "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
+  test::record_gate({.id = "hole_plate.crack_speed",
+                     .claim = "no crack from the hole shall outrun the Rayleigh wave speed beyond the speed measurement's resolution",
+                     .measured = max_speed, .expected = cR * (1.0 + resolution), .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
                      "speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
+                     .source = "[freund1990] §5; [rayleigh1885]", .unit = "m/s", .problem = problem});
 
   // Symmetry about the load axis y = 20 mm, at the last frame.
   const auto fields = run.fields();
   const auto last = test::read_frame_2d(fields, fields.frames().back());
   const double asym = test::mirror_asymmetry(last, 1, 0.020, dx);
-  test::record_gate({"hole_plate.symmetry",
-                     "the damage field shall be symmetric about the load axis y = 20 mm at the end (32 µs): Σ|φ − φ_mirror| / Σφ ≤ 5 %",
-                     asym, 0.05, 0.0, test::Compare::at_most,
-                     "the set-up is exactly symmetric on this lattice; mirrored particles sum their bonds in mirrored order, so "
+  test::record_gate({.id = "hole_plate.symmetry",
+                     .claim = "the damage field shall be symmetric about the load axis y = 20 mm at the end (32 µs): Σ|φ − φ_mirror| / Σφ ≤ 5 %",
+                     .measured = asym, .expected = 0.05, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "the set-up is exactly symmetric on this lattice; mirrored particles sum their bonds in mirrored order, so "
                      "a bond within round-off of s₀ can break a step earlier on one side and the difference grows as cracks "
                      "branch. 5 % of the damage allows that and still rejects a one-sided crack (which gives ~100 %)",
-                     source, "", problem});
+                     .source = source, .unit = "", .problem = problem});
   EXPECT_EQ(main_cracks.size(), 2u) << "one crack from the top and one from the bottom of the hole";
 
   // Evidence: every measured time against the paper's.

@@ -51,23 +51,23 @@ TEST(FullInclinedCrack, CracksAgainstSeed004) {
   double max_speed = 0.0;
   for (const auto& c : crack.at("cracks")) max_speed = std::max(max_speed, c.at("max_speed").get<double>());
 
-  test::record_gate({"inclined_crack.initiation_time",
-                     "the wing cracks shall initiate (first particle with φ ≥ ½ outside the notch) within ±20 % of the paper's 3.99 µs",
-                     t_init, 3.99e-6, 0.20, test::Compare::rel, "issue 5 sets ±20 % for this seed's times", source, "s", problem});
-  test::record_gate({"inclined_crack.through_crack_time",
-                     "the plate shall be cut through (two pieces) within ±20 % of the paper's 10.64 µs", t_sep, 10.64e-6, 0.20,
-                     test::Compare::rel, "issue 5 sets ±20 % for this seed's times", source, "s", problem});
-  test::record_gate({"inclined_crack.overall_direction",
-                     "the through-crack's overall direction (principal axis of the cracked particles when the plate separates) "
+  test::record_gate({.id = "inclined_crack.initiation_time",
+                     .claim = "the wing cracks shall initiate (first particle with φ ≥ ½ outside the notch) within ±20 % of the paper's 3.99 µs",
+                     .measured = t_init, .expected = 3.99e-6, .tolerance = 0.20, .compare = test::Compare::rel, .tolerance_reason = "issue 5 sets ±20 % for this seed's times", .source = source, .unit = "s", .problem = problem});
+  test::record_gate({.id = "inclined_crack.through_crack_time",
+                     .claim = "the plate shall be cut through (two pieces) within ±20 % of the paper's 10.64 µs", .measured = t_sep, .expected = 10.64e-6, .tolerance = 0.20,
+                     .compare = test::Compare::rel, .tolerance_reason = "issue 5 sets ±20 % for this seed's times", .source = source, .unit = "s", .problem = problem});
+  test::record_gate({.id = "inclined_crack.overall_direction",
+                     .claim = "the through-crack's overall direction (principal axis of the cracked particles when the plate separates) "
                      "shall be within 15° of 45°",
-                     angle, 45.0, 15.0, test::Compare::abs, "issue 5 sets 15°", source, "°", problem});
+                     .measured = angle, .expected = 45.0, .tolerance = 15.0, .compare = test::Compare::abs, .tolerance_reason = "issue 5 sets 15°", .source = source, .unit = "°", .problem = problem});
   const double resolution = dx / (crack.at("speed_window").get<double>() * cR);  // one site over the fit window, / c_R
-  test::record_gate({"inclined_crack.crack_speed",
-                     "no crack shall outrun the Rayleigh wave speed beyond the speed measurement's resolution", max_speed,
-                     cR * (1.0 + resolution), 0.0, test::Compare::at_most,
-                     "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
+  test::record_gate({.id = "inclined_crack.crack_speed",
+                     .claim = "no crack shall outrun the Rayleigh wave speed beyond the speed measurement's resolution", .measured = max_speed,
+                     .expected = cR * (1.0 + resolution), .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and the "
                      "speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
+                     .source = "[freund1990] §5; [rayleigh1885]", .unit = "m/s", .problem = problem});
 
   auto loc = [&](const char* name) { return opt(crack.at("locations").at(name).at("first_bond_failure")); };
   json rows = json::array();

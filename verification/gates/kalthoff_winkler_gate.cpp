@@ -44,17 +44,17 @@ void run_case(double spacing, const std::string& tag) {
   ASSERT_NE(main, nullptr) << "no crack left the notch tip";
   const double angle = main->at("angle_deg").get<double>();  // notch line = +x
   const std::string at = " (Δx = " + std::to_string(spacing * 1e3).substr(0, 4) + " mm)";
-  test::record_gate({"kalthoff_winkler.crack_angle." + tag,
-                     "the crack from the notch tip shall run at 60°–72° to the notch line (chord origin → tip)" + at, angle,
-                     66.0, 6.0, test::Compare::abs,
-                     "issue 5's band 60°–72°: Kalthoff & Winkler measured about 70°; simulations of the test spread over the band",
-                     source, "°", problem});
-  test::record_gate({"kalthoff_winkler.crack_speed." + tag,
-                     "the crack shall not outrun the Rayleigh wave speed beyond the speed measurement's resolution" + at,
-                     main->at("max_speed").get<double>(), cR * (1.0 + resolution), 0.0, test::Compare::at_most,
-                     "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and "
+  test::record_gate({.id = "kalthoff_winkler.crack_angle." + tag,
+                     .claim = "the crack from the notch tip shall run at 60°–72° to the notch line (chord origin → tip)" + at, .measured = angle,
+                     .expected = 66.0, .tolerance = 6.0, .compare = test::Compare::abs,
+                     .tolerance_reason = "issue 5's band 60°–72°: Kalthoff & Winkler measured about 70°; simulations of the test spread over the band",
+                     .source = source, .unit = "°", .problem = problem});
+  test::record_gate({.id = "kalthoff_winkler.crack_speed." + tag,
+                     .claim = "the crack shall not outrun the Rayleigh wave speed beyond the speed measurement's resolution" + at,
+                     .measured = main->at("max_speed").get<double>(), .expected = cR * (1.0 + resolution), .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "mode-I cracks cannot outrun Rayleigh waves (Freund 1990); the tip is known to one lattice site and "
                      "the speed is fitted over W = 10 Δx / c_R, so one site is worth 10 % of c_R",
-                     "[freund1990] §5; [rayleigh1885]", "m/s", problem});
+                     .source = "[freund1990] §5; [rayleigh1885]", .unit = "m/s", .problem = problem});
 
   json rows = json::array();
   auto opt = [](const json& v) { return v.is_null() ? json("—") : v; };

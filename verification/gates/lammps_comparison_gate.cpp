@@ -159,25 +159,25 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
   }
   const double rel_u = du / umax, rel_v = dv / vmax;
 
-  test::record_gate({"lammps.elastic_pmb.families", "pdmpm and LAMMPS shall build the same bonds (bond sides) from the same particles",
-                     static_cast<double>(r.lmp.bonds), static_cast<double>(r.ours.sides), 0.0, test::Compare::abs,
-                     "bond counts are integers: the families must be identical (|ξ| ≤ δ on the same lattice)",
-                     "[parks2008]; LAMMPS fix_peri_neigh.cpp (partners within δ); docs/discretisation.md", "", problem});
-  test::record_gate({"lammps.elastic_pmb.displacement",
-                     "the displacement fields of pdmpm and LAMMPS (peri/pmb) shall agree at every particle to 1e-6 of the largest displacement after 300 steps of an elastic indentation",
-                     rel_u, 1e-6, 0.0, test::Compare::at_most,
-                     "same model, partial-volume rule, contact rule, indenter law and velocity-Verlet integrator: only round-off differs (LAMMPS stores positions x, pdmpm displacements u; summation orders differ), ~1e-12 relative per step",
-                     "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp", "", problem});
-  test::record_gate({"lammps.elastic_pmb.displacement_per_particle",
-                     "at every particle whose displacement exceeds 1e-3 of the largest, |u_pdmpm − u_LAMMPS| / |u_LAMMPS| shall "
+  test::record_gate({.id = "lammps.elastic_pmb.families", .claim = "pdmpm and LAMMPS shall build the same bonds (bond sides) from the same particles",
+                     .measured = static_cast<double>(r.lmp.bonds), .expected = static_cast<double>(r.ours.sides), .tolerance = 0.0, .compare = test::Compare::abs,
+                     .tolerance_reason = "bond counts are integers: the families must be identical (|ξ| ≤ δ on the same lattice)",
+                     .source = "[parks2008]; LAMMPS fix_peri_neigh.cpp (partners within δ); docs/discretisation.md", .unit = "", .problem = problem});
+  test::record_gate({.id = "lammps.elastic_pmb.displacement",
+                     .claim = "the displacement fields of pdmpm and LAMMPS (peri/pmb) shall agree at every particle to 1e-6 of the largest displacement after 300 steps of an elastic indentation",
+                     .measured = rel_u, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "same model, partial-volume rule, contact rule, indenter law and velocity-Verlet integrator: only round-off differs (LAMMPS stores positions x, pdmpm displacements u; summation orders differ), ~1e-12 relative per step",
+                     .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp", .unit = "", .problem = problem});
+  test::record_gate({.id = "lammps.elastic_pmb.displacement_per_particle",
+                     .claim = "at every particle whose displacement exceeds 1e-3 of the largest, |u_pdmpm − u_LAMMPS| / |u_LAMMPS| shall "
                      "be at most 1e-6",
-                     worst_particle, 1e-6, 0.0, test::Compare::at_most,
-                     "as above; particles the wave has hardly reached (|u| below 1e-3 of the largest) are left out because "
+                     .measured = worst_particle, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "as above; particles the wave has hardly reached (|u| below 1e-3 of the largest) are left out because "
                      "there |u| itself is of the order of the round-off of the other particles",
-                     "[parks2008]; [thompson2022] (LAMMPS side by side)", "", problem});
-  test::record_gate({"lammps.elastic_pmb.velocity", "the velocity fields shall agree to 1e-6 of the largest velocity",
-                     rel_v, 1e-6, 0.0, test::Compare::at_most,
-                     "as for the displacements: the same integrator in exact arithmetic", "[parks2008]; [thompson2022] (LAMMPS side by side)", "", problem});
+                     .source = "[parks2008]; [thompson2022] (LAMMPS side by side)", .unit = "", .problem = problem});
+  test::record_gate({.id = "lammps.elastic_pmb.velocity", .claim = "the velocity fields shall agree to 1e-6 of the largest velocity",
+                     .measured = rel_v, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "as for the displacements: the same integrator in exact arithmetic", .source = "[parks2008]; [thompson2022] (LAMMPS side by side)", .unit = "", .problem = problem});
   test::record_data(problem, "01_elastic",
                     {{"kind", "table"},
                      {"title", "Elastic PMB indentation: pdmpm vs LAMMPS (disk_impact_elastic.toml)"},
@@ -218,11 +218,11 @@ void compare_breaking(const std::string& scene_file, const std::string& tag, int
   auto own_rule = scene;
   own_rule.break_after_force = false;
   const double ours_default = static_cast<double>(run_ours(own_rule, steps, dt).broken_sides) / sides;
-  test::record_gate({gate_id, "the broken-bond fraction of pdmpm shall be within 10 % of LAMMPS' on " + label, ours, lmp, 0.10,
-                     test::Compare::rel,
-                     "same model and input (LAMMPS' bond-break timing and contact rule taken by the scene); fragmentation "
+  test::record_gate({.id = gate_id, .claim = "the broken-bond fraction of pdmpm shall be within 10 % of LAMMPS' on " + label, .measured = ours, .expected = lmp, .tolerance = 0.10,
+                     .compare = test::Compare::rel,
+                     .tolerance_reason = "same model and input (LAMMPS' bond-break timing and contact rule taken by the scene); fragmentation "
                      "is chaotic, so round-off may make the bond-by-bond pattern diverge (issue 5 sets 10 %)",
-                     "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp", "", problem});
+                     .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp", .unit = "", .problem = problem});
   record_maps(tag + "_damage", label + ": damage φ, pdmpm (left) and LAMMPS (right)", setup, r.ours.damage, last.damage,
               normal, layer, ppc,
               "One lattice layer at the end of the run; colour: φ from 0 (dark blue) to 1 (dark red). Same particles, "

@@ -228,21 +228,21 @@ void study(const char* dim) {
         const std::string what = std::string(is_pmb ? "PMB energy density" : "LPS weighted volume") + " (" + dim +
                                  ", ω = " + std::string(pd::name(w)) + ", partial volume " + std::string(pd::name(pv)) +
                                  ")";
-        test::record_gate({id + ".decreasing",
-                           "The largest lattice-sum error of the " + what +
+        test::record_gate({.id = id + ".decreasing",
+                           .claim = "The largest lattice-sum error of the " + what +
                                " in each unit window of m (2–3, …, 7–8) shall decrease from window to window "
                                "(measured: largest ratio of consecutive window maxima)",
-                           step, 1.0, 0.0, test::Compare::at_most,
-                           "A ratio ≤ 1 is the definition of 'decreases'; no slack.",
-                           "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
-        test::record_gate({id + ".order",
-                           "The window-maximum lattice-sum error of the " + what +
+                           .measured = step, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::at_most,
+                           .tolerance_reason = "A ratio ≤ 1 is the definition of 'decreases'; no slack.",
+                           .source = "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", .unit = "", .problem = "lattice_sums"});
+        test::record_gate({.id = id + ".order",
+                           .claim = "The window-maximum lattice-sum error of the " + what +
                                " shall fall at least like m^−1.5 (fitted over m = 2…8; predicted order 2)",
-                           order, 1.5, 0.0, test::Compare::at_least,
-                           "Predicted order is 2 (the ramp matches the exact cell fractions to first moment; for "
+                           .measured = order, .expected = 1.5, .tolerance = 0.0, .compare = test::Compare::at_least,
+                           .tolerance_reason = "Predicted order is 2 (the ramp matches the exact cell fractions to first moment; for "
                            "quadratic ω the boundary weight vanishes). 1.5 is half-way between that and order 1, "
                            "the bias of a ramp that misses volume (seed001), so the gate separates the two.",
-                           "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", "", "lattice_sums"});
+                           .source = "[deryugin2023] §4; docs/models/pmb.md; theory in lattice_sum_gate.cpp header", .unit = "", .problem = "lattice_sums"});
       }
     }
   }
@@ -310,14 +310,14 @@ void block_matches_stencil(const char* dim) {
     worst = std::max(worst, d);
     rows.push_back({dim, std::string(pd::name(pv)), W_block, st.pmb, m_block, st.m});
   }
-  test::record_gate({std::string("lattice_sums.block_equals_stencil.") + dim,
-                     std::string("The PMB energy density and LPS weighted volume at the centre of a make_block "
+  test::record_gate({.id = std::string("lattice_sums.block_equals_stencil.") + dim,
+                     .claim = std::string("The PMB energy density and LPS weighted volume at the centre of a make_block "
                                  "lattice block (m = 3.015, ω = constant, every partial-volume option, ") +
                          dim + ") shall equal the stencil sums used for the lattice-sum study",
-                     worst, 0.0, 1e-12, test::Compare::abs,
-                     "Same terms summed in possibly different order: ≤ N·u with N ≤ 200 bonds gives ≤ 3e-14 "
+                     .measured = worst, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
+                     .tolerance_reason = "Same terms summed in possibly different order: ≤ N·u with N ≤ 200 bonds gives ≤ 3e-14 "
                      "relative; 1e-12 leaves margin.",
-                     "[silling2007]; pmb.cpp energy, weighted_volume.hpp", "", "lattice_sums"});
+                     .source = "[silling2007]; pmb.cpp energy, weighted_volume.hpp", .unit = "", .problem = "lattice_sums"});
   test::record_data(
       "lattice_sums", std::string("block_vs_stencil_") + dim,
       {{"kind", "table"},

@@ -114,22 +114,22 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
     if (!c.gated) continue;
     for (auto [what, order, errs] : {std::tuple{"u", pu, eu}, std::tuple{"v", pv, ev}}) {
       test::record_gate(Gate{
-          "mpm.bar_vibration." + label + ".order_" + what,
-          std::string("MUSL ") + label + " MPM shall converge in the centre-of-mass " +
+          .id = "mpm.bar_vibration." + label + ".order_" + what,
+          .claim = std::string("MUSL ") + label + " MPM shall converge in the centre-of-mass " +
               (std::string(what) == "u" ? "displacement" : "velocity (half-step)") +
               " of the vibrating bar at observed order ≥ 1.8 over 4 levels (h = L/8 … L/64)",
-          order, 1.8, 0.0, Compare::at_least,
-          "second order expected (leapfrog in time with dt ∝ h, consistent mass-lumped linear interpolation "
+          .measured = order, .expected = 1.8, .tolerance = 0.0, .compare = Compare::at_least,
+          .tolerance_reason = "second order expected (leapfrog in time with dt ∝ h, consistent mass-lumped linear interpolation "
           "in space); 0.2 below for the pre-asymptotic coarse level",
-          kSource, "", kProblem});
+          .source = kSource, .unit = "", .problem = kProblem});
       EXPECT_TRUE(mu::monotone_decreasing(errs)) << label << " " << what;
     }
-    test::record_gate(Gate{"mpm.bar_vibration." + label + ".error_u_64",
-                           "MUSL " + label + " MPM with 64 cells shall match the exact centre-of-mass displacement to "
+    test::record_gate(Gate{.id = "mpm.bar_vibration." + label + ".error_u_64",
+                           .claim = "MUSL " + label + " MPM with 64 cells shall match the exact centre-of-mass displacement to "
                                              "within 0.1 % of its amplitude over one period",
-                           eu.back(), 1e-3, 0.0, Compare::at_most,
-                           "0.1 % of the amplitude: the second-order trend from the coarse levels predicts 5e-4",
-                           kSource, "", kProblem});
+                           .measured = eu.back(), .expected = 1e-3, .tolerance = 0.0, .compare = Compare::at_most,
+                           .tolerance_reason = "0.1 % of the amplitude: the second-order trend from the coarse levels predicts 5e-4",
+                           .source = kSource, .unit = "", .problem = kProblem});
   }
   plot_series.push_back(mu::slope_line("slope 2", hs, 0.03, 2.0));
   test::record_data(kProblem, "01_convergence",
@@ -170,13 +170,13 @@ TEST(FastMpmBarVibration, EnergyStaysWithinLeapfrogBound) {
   const int cells = 32;
   const BarResult r = run_bar(cells, mpm::ShapeFunction::gimp, mpm::UpdateScheme::musl, 0.1, false, 4.0);
   const double h = kL / cells, dt = 0.1 * h / std::sqrt(kE / kRho);
-  test::record_gate(Gate{"mpm.bar_vibration.energy", 
-                         "GIMP/MUSL MPM shall keep the total energy of the vibrating bar within ω·dt (relative) of "
+  test::record_gate(Gate{.id = "mpm.bar_vibration.energy", 
+                         .claim = "GIMP/MUSL MPM shall keep the total energy of the vibrating bar within ω·dt (relative) of "
                          "its initial value over four periods",
-                         r.energy_drift, kOmega * dt, 0.0, Compare::at_most,
-                         "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
+                         .measured = r.energy_drift, .expected = kOmega * dt, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
                          "factor 2 for the MPM transfers",
-                         "[hairer2006] ch. IX", "", kProblem});
+                         .source = "[hairer2006] ch. IX", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "04_energy",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: total energy / initial (GIMP, MUSL, 32 cells)"},

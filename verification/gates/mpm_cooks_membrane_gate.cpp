@@ -151,23 +151,23 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
     plot.push_back(mu::series(std::string(mpm::name(shape)) + " (fitted order " + std::to_string(order).substr(0, 4) + ")",
                               hs, tips, "points"));
     if (shape == mpm::ShapeFunction::gimp) {
-      test::record_gate(Gate{"mpm.cooks_membrane." + tag + ".gimp_tip",
-                             "GIMP MPM (USL, dynamic relaxation) with cell h = 48/" + std::to_string(cells.back()) +
+      test::record_gate(Gate{.id = "mpm.cooks_membrane." + tag + ".gimp_tip",
+                             .claim = "GIMP MPM (USL, dynamic relaxation) with cell h = 48/" + std::to_string(cells.back()) +
                                  " shall give the mid-edge deflection of Cook's membrane within 1 % of 23.96",
-                             tips.back(), kReference, 0.01, Compare::rel,
-                             "1 %: the staircase particle boundary and the particle quadrature converge at about "
+                             .measured = tips.back(), .expected = kReference, .tolerance = 0.01, .compare = Compare::rel,
+                             .tolerance_reason = "1 %: the staircase particle boundary and the particle quadrature converge at about "
                              "first order; the measured levels are within 0.6 %",
-                             "[pian-sumihara1984]; [cook1989] (converged plane-stress value 23.96)",
-                             "", kProblem});
+                             .source = "[pian-sumihara1984]; [cook1989] (converged plane-stress value 23.96)",
+                             .unit = "", .problem = kProblem});
     }
     if (shape == mpm::ShapeFunction::linear) {
       EXPECT_TRUE(mu::monotone_decreasing(errs));
-      test::record_gate(Gate{"mpm.cooks_membrane." + tag + ".linear_order",
-                             "linear MPM shall approach the Cook's membrane reference monotonically with observed "
+      test::record_gate(Gate{.id = "mpm.cooks_membrane." + tag + ".linear_order",
+                             .claim = "linear MPM shall approach the Cook's membrane reference monotonically with observed "
                              "order ≥ 0.8 in |u − 23.96| over " + std::to_string(cells.size()) + " levels",
-                             order, 0.8, 0.0, Compare::at_least,
-                             "first order expected from the staircase representation of the slanted edges",
-                             "[pian-sumihara1984] (reference value)", "", kProblem});
+                             .measured = order, .expected = 0.8, .tolerance = 0.0, .compare = Compare::at_least,
+                             .tolerance_reason = "first order expected from the staircase representation of the slanted edges",
+                             .source = "[pian-sumihara1984] (reference value)", .unit = "", .problem = kProblem});
     }
   }
   plot.push_back(mu::series("reference 23.96", {hs.front(), hs.back()}, {kReference, kReference}, "dashed"));

@@ -136,21 +136,21 @@ void convergence_study(const std::array<Axis, D>& axes, double nu, const std::ve
       order_cp = order;
       plot.push_back(mu::slope_line("slope 2", hs, err.front(), 2.0));
       EXPECT_TRUE(mu::monotone_decreasing(err)) << tag;
-      test::record_gate(Gate{"mpm.manufactured." + tag + ".gimp_order",
-                             "GIMP MPM (MUSL, domains stretched with F) shall converge in the L2 displacement error of "
+      test::record_gate(Gate{.id = "mpm.manufactured." + tag + ".gimp_order",
+                             .claim = "GIMP MPM (MUSL, domains stretched with F) shall converge in the L2 displacement error of "
                              "the " + title + " at observed order ≥ 1.7 over " + std::to_string(cells.size()) +
                                  " levels (h = 1/" + std::to_string(cells.front()) + " … 1/" +
                                  std::to_string(cells.back()) + ")",
-                             order, 1.7, 0.0, Compare::at_least,
-                             "second order expected (exact quadrature of contiguous particle domains, leapfrog in time "
+                             .measured = order, .expected = 1.7, .tolerance = 0.0, .compare = Compare::at_least,
+                             .tolerance_reason = "second order expected (exact quadrature of contiguous particle domains, leapfrog in time "
                              "with dt ∝ h); the issue asks for ≥ 1.7",
-                             source, "", kProblem});
-      test::record_gate(Gate{"mpm.manufactured." + tag + ".gimp_error_finest",
-                             "GIMP MPM shall reproduce the " + title + " to an L2 displacement error below 1 % of the "
+                             .source = source, .unit = "", .problem = kProblem});
+      test::record_gate(Gate{.id = "mpm.manufactured." + tag + ".gimp_error_finest",
+                             .claim = "GIMP MPM shall reproduce the " + title + " to an L2 displacement error below 1 % of the "
                              "amplitude at h = 1/" + std::to_string(cells.back()),
-                             err.back(), 1e-2, 0.0, Compare::at_most,
-                             "1 % of the amplitude; the measured second-order trend puts the finest level well below",
-                             source, "", kProblem});
+                             .measured = err.back(), .expected = 1e-2, .tolerance = 0.0, .compare = Compare::at_most,
+                             .tolerance_reason = "1 % of the amplitude; the measured second-order trend puts the finest level well below",
+                             .source = source, .unit = "", .problem = kProblem});
     }
   }
   (void)order_cp;

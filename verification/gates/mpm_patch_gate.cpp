@@ -82,13 +82,13 @@ TEST(FastMpmPatch, UniformStressStaysUniform) {
       rows.push_back({std::string(mpm::name(shape)), std::string(mpm::name(scheme)), d1, d2s, d2e, d3});
       worst = std::max({worst, d1, d2s, d2e, d3});
     }
-  test::record_gate(Gate{"mpm.patch.uniform_stress",
-                         "a body at uniform stress (normal and shear), boundary nodes held, shall keep that stress to "
+  test::record_gate(Gate{.id = "mpm.patch.uniform_stress",
+                         .claim = "a body at uniform stress (normal and shear), boundary nodes held, shall keep that stress to "
                          "round-off for linear, GIMP and B-spline shape functions, USF/USL/MUSL, 1D/2D/3D",
-                         worst, 1e-12, 0.0, Compare::at_most,
-                         "round-off: interior nodal forces are sums of O(10²) terms of size V τ / h that cancel exactly "
+                         .measured = worst, .expected = 1e-12, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "round-off: interior nodal forces are sums of O(10²) terms of size V τ / h that cancel exactly "
                          "in exact arithmetic",
-                         "[bardenhagen-kober2004] patch test: Σ_p V_p ∇S_Ip = 0 at interior nodes for particles tiling the cells", "", kProblem});
+                         .source = "[bardenhagen-kober2004] patch test: Σ_p V_p ∇S_Ip = 0 at interior nodes for particles tiling the cells", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "01_uniform_stress",
                     {{"kind", "table"},
                      {"title", "Uniform stress patch test: max |σ − σ₀| / |σ₀| after 50 steps"},
@@ -159,18 +159,18 @@ TEST(FastMpmPatch, RigidRotationLeavesStressUnchanged) {
         worst_free = std::max(worst_free, f2);
         worst_angle = std::max({worst_angle, a2, a3, fa2});
       }
-  test::record_gate(Gate{"mpm.patch.rigid_rotation.prestressed",
-                         "a pre-stressed body (strain 1e-3, J2 beyond yield) turned rigidly by 90° in 400 steps shall "
+  test::record_gate(Gate{.id = "mpm.patch.rigid_rotation.prestressed",
+                         .claim = "a pre-stressed body (strain 1e-3, J2 beyond yield) turned rigidly by 90° in 400 steps shall "
                          "keep its stress in the rotating frame: |RᵀσR − σ₀| ≤ 1e-12 E, for linear elastic, neo-Hookean "
                          "and J2 material, all shape functions, USF and MUSL, 2D and 3D",
-                         worst, 1e-12, 0.0, Compare::at_most,
-                         "round-off: the Cayley increment of a skew velocity gradient is orthogonal to machine "
+                         .measured = worst, .expected = 1e-12, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "round-off: the Cayley increment of a skew velocity gradient is orthogonal to machine "
                          "precision, so U changes only by the accumulated rounding of 400 products (≈ 400 · 2.2e-16)",
-                         "frame indifference; [hughes-winget1980] incrementally objective update", "", kProblem});
-  test::record_gate(Gate{"mpm.patch.rigid_rotation.stress_free",
-                         "a stress-free body turned rigidly by 90° shall stay stress-free to 1e-13·E",
-                         worst_free, 1e-13, 0.0, Compare::at_most,
-                         "round-off of ln U for U = I(1 + O(1e-16))", "frame indifference ([simo-hughes1998])", "", kProblem});
+                         .source = "frame indifference; [hughes-winget1980] incrementally objective update", .unit = "", .problem = kProblem});
+  test::record_gate(Gate{.id = "mpm.patch.rigid_rotation.stress_free",
+                         .claim = "a stress-free body turned rigidly by 90° shall stay stress-free to 1e-13·E",
+                         .measured = worst_free, .expected = 1e-13, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "round-off of ln U for U = I(1 + O(1e-16))", .source = "frame indifference ([simo-hughes1998])", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "02_rigid_rotation",
                     {{"kind", "table"},
                      {"title", "Rigid rotation by 90°: max |RᵀσR − σ₀| / E"},

@@ -132,18 +132,18 @@ TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
   monotone_curve<3>(mpm::Setting::solid3d, "3D", ws, wl, nullptr);
   monotone_curve<1>(mpm::Setting::bar1d, "1D bar", ws, wl, nullptr);
   std::cout << "plane stress: stress " << ws_ps << " lateral " << wl_ps << "; all: " << ws << " " << wl << "\n";
-  test::record_gate(Gate{"mpm.uniaxial_j2.point.stress",
-                         "a J2 material point in uniaxial stress (plane-stress, 3D and 1D return maps) shall follow "
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.stress",
+                         .claim = "a J2 material point in uniaxial stress (plane-stress, 3D and 1D return maps) shall follow "
                          "σ = σ_y + E_t(ε − σ_y/E) beyond yield and E ε below it, to 1e-10 relative, up to ε = 5 %",
-                         ws, 1e-10, 0.0, Compare::at_most,
-                         "backward-Euler return mapping with linear hardening is exact along a radial stress path; "
+                         .measured = ws, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "backward-Euler return mapping with linear hardening is exact along a radial stress path; "
                          "the residue is the secant solve of σ₂₂ = 0 (to 1e-15 σ_y) and rounding",
-                         kSource, "", kProblem});
-  test::record_gate(Gate{"mpm.uniaxial_j2.point.lateral",
-                         "the lateral (and plane-stress thickness) strain shall equal −νσ/E − ε_p/2 to 1e-10 relative",
-                         wl, 1e-10, 0.0, Compare::at_most,
-                         "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
-                         "[simo-hughes1998] J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", "", kProblem});
+                         .source = kSource, .unit = "", .problem = kProblem});
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.lateral",
+                         .claim = "the lateral (and plane-stress thickness) strain shall equal −νσ/E − ε_p/2 to 1e-10 relative",
+                         .measured = wl, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
+                         .source = "[simo-hughes1998] J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "01_stress_strain",
                     {{"kind", "plot"},
                      {"title", "Uniaxial stress–strain curve, one plane-stress material point"},
@@ -177,20 +177,20 @@ TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
   // Isotropic hardening: the peak stress grows every cycle by E_t times the plastic strain range.
   EXPECT_GT(std::abs(exact.sigma), 340e6 + 1.45e9 * 0.01);
   std::cout << "cyclic worst " << worst << " final alpha " << drv.history.eq_plastic_strain << " vs " << exact.alpha << "\n";
-  test::record_gate(Gate{"mpm.uniaxial_j2.point.cyclic",
-                         "under ±1 % strain cycles (three full cycles, plane stress) the J2 point shall follow the "
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.cyclic",
+                         .claim = "under ±1 % strain cycles (three full cycles, plane stress) the J2 point shall follow the "
                          "exact isotropic-hardening response (elastic slope E between ±κ(ε̄_p), slope E_t on yield) "
                          "to 1e-10 σ_y",
-                         worst, 1e-10, 0.0, Compare::at_most,
-                         "each increment is either elastic or plastic along a fixed uniaxial direction, where the "
+                         .measured = worst, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "each increment is either elastic or plastic along a fixed uniaxial direction, where the "
                          "return map is exact; increments straddling yield are split exactly by both",
-                         "linear isotropic hardening, κ = σ_y + H ε̄_p ([simo-hughes1998] §2.3)", "", kProblem});
-  test::record_gate(Gate{"mpm.uniaxial_j2.point.cyclic_eq_plastic",
-                         "the accumulated equivalent plastic strain after three cycles shall match the exact value "
+                         .source = "linear isotropic hardening, κ = σ_y + H ε̄_p ([simo-hughes1998] §2.3)", .unit = "", .problem = kProblem});
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.cyclic_eq_plastic",
+                         .claim = "the accumulated equivalent plastic strain after three cycles shall match the exact value "
                          "to 1e-10 relative",
-                         std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha, 1e-10, 0.0,
-                         Compare::at_most, "exact along radial paths (see above)",
-                         "[simo-hughes1998] ε̄_p = ∫|dε_p| in uniaxial stress", "", kProblem});
+                         .measured = std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha, .expected = 1e-10, .tolerance = 0.0,
+                         .compare = Compare::at_most, .tolerance_reason = "exact along radial paths (see above)",
+                         .source = "[simo-hughes1998] ε̄_p = ∫|dε_p| in uniaxial stress", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "02_cyclic",
                     {{"kind", "plot"},
                      {"title", "Cyclic uniaxial loading, ±1 % (plane-stress point)"},
@@ -267,18 +267,18 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
   }
   std::cout << "plate: worst " << worst << " reaction " << worst_reaction << " lateral " << worst_lateral
             << " final e " << es.back() << " steps " << nsteps << "\n";
-  test::record_gate(Gate{"mpm.uniaxial_j2.plate.stress",
-                         "an MPM plate in plane stress (GIMP, MUSL, cell 2Δx) pulled quasi-statically to 2 % shall "
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.stress",
+                         .claim = "an MPM plate in plane stress (GIMP, MUSL, cell 2Δx) pulled quasi-statically to 2 % shall "
                          "reproduce the bilinear curve: mean τ₁₁ within 1 % of σ_y of σ(ε̄₁₁) beyond ε = σ_y/(4E)",
-                         worst, 0.01, 0.0, Compare::at_most,
-                         "dynamic residue of the finite loading rate (ramp over 20 wave transits, then ε̇ ≈ 1.3/s·…): "
+                         .measured = worst, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "dynamic residue of the finite loading rate (ramp over 20 wave transits, then ε̇ ≈ 1.3/s·…): "
                          "stress waves of amplitude ≲ ρ c ΔV; the material response itself is exact",
-                         kSource, "", kProblem});
-  test::record_gate(Gate{"mpm.uniaxial_j2.plate.lateral",
-                         "the plate's mean lateral log strain shall equal −νσ/E − ε_p/2 to within 1 % of ε₁₁",
-                         worst_lateral, 0.01, 0.0, Compare::at_most,
-                         "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
-                         "[simo-hughes1998] J2 flow rule and Hooke's law in uniaxial stress", "", kProblem});
+                         .source = kSource, .unit = "", .problem = kProblem});
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.lateral",
+                         .claim = "the plate's mean lateral log strain shall equal −νσ/E − ε_p/2 to within 1 % of ε₁₁",
+                         .measured = worst_lateral, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
+                         .source = "[simo-hughes1998] J2 flow rule and Hooke's law in uniaxial stress", .unit = "", .problem = kProblem});
   test::record_data(kProblem, "03_plate_curve",
                     {{"kind", "plot"},
                      {"title", "Plate in uniaxial tension (plane stress MPM) vs bilinear law"},
@@ -291,13 +291,13 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
                      {"caption", "20 × 10 mm quarter plate, 3 mm thick, Δx = 0.5 mm, cell 1 mm, GIMP, MUSL; pulled "
                                  "end velocity ramped over 20 transits L/c. The reaction is a nominal (first "
                                  "Piola) stress, τ e^{−ε}."}});
-  test::record_gate(Gate{"mpm.uniaxial_j2.plate.reaction",
-                         "the force the pulled boundary exerts, over the reference section, shall equal the nominal "
+  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.reaction",
+                         .claim = "the force the pulled boundary exerts, over the reference section, shall equal the nominal "
                          "stress τ₁₁ e^(−ε) of the particles to within 1 % of σ_y",
-                         worst_reaction, 0.01, 0.0, Compare::at_most,
-                         "dynamic residue and the inertia of the boundary nodes; nodes on the symmetry plane count "
+                         .measured = worst_reaction, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
+                         .tolerance_reason = "dynamic residue and the inertia of the boundary nodes; nodes on the symmetry plane count "
                          "half (their mirror image carries the other half)",
-                         "[simo-hughes1998] equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section", "", kProblem});
+                         .source = "[simo-hughes1998] equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section", .unit = "", .problem = kProblem});
 }
 
 }  // namespace

@@ -136,14 +136,14 @@ TEST(FastMpmVortex, ConvergenceAtModerateAmplitude) {
                               err, "points"));
     if (m.shape == mpm::ShapeFunction::gimp && m.domain == mpm::GimpDomain::fixed) {
       EXPECT_TRUE(mu::monotone_decreasing(err));
-      test::record_gate(Gate{"mpm.vortex.gimp_order",
-                             "uGIMP MPM (MUSL) shall converge on the generalized vortex (A = 0.1) with observed order "
+      test::record_gate(Gate{.id = "mpm.vortex.gimp_order",
+                             .claim = "uGIMP MPM (MUSL) shall converge on the generalized vortex (A = 0.1) with observed order "
                              "≥ 1 in the L2 position error over 3 levels",
-                             order, 1.0, 0.0, Compare::at_least,
-                             "the issue asks for the convergence to be reported; ≥ 1 is the weakest claim of "
+                             .measured = order, .expected = 1.0, .tolerance = 0.0, .compare = Compare::at_least,
+                             .tolerance_reason = "the issue asks for the convergence to be reported; ≥ 1 is the weakest claim of "
                              "convergence (the free curved surfaces are represented by a staircase of particles, O(h))",
-                             "[kamojjala2015] (generalized vortex)",
-                             "", kProblem});
+                             .source = "[kamojjala2015] (generalized vortex)",
+                             .unit = "", .problem = kProblem});
     }
   }
   plot.push_back(mu::slope_line("slope 2", hs, 0.02, 2.0));

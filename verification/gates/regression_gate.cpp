@@ -69,24 +69,24 @@ TEST(FastRegression, ForcesMatchGold) {
                     r.broken_bond_sides, max_abs(f.values), df, dW, dt});
   }
   for (const auto& [tag, w] : worst) {
-    test::record_gate({"regression." + tag,
-                       "The forces, energy densities and dilatations of the fixed non-affine, partially cracked "
+    test::record_gate({.id = "regression." + tag,
+                       .claim = "The forces, energy densities and dilatations of the fixed non-affine, partially cracked "
                        "configuration shall equal the gold of reference_data/regression_forces.h5 for all 7 "
                        "influence functions (" + tag + "; measured: worst max|Δ|/max|gold| over the three fields, at " +
                            w.second + ")" + regold_hint,
-                       w.first, 0.0, 1e-12, test::Compare::abs,
-                       "Same code and inputs give the same bits on one build; across compilers and flags (FMA "
+                       .measured = w.first, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
+                       .tolerance_reason = "Same code and inputs give the same bits on one build; across compilers and flags (FMA "
                        "contraction with -march=native, libm's exp/pow within 1 ulp) each pair term may move by a "
                        "few ulp and a family sum of ≤ 123 terms by ≤ 123·u relative to the sum of |terms|, i.e. "
                        "≲ 1e-14 of the largest value. 1e-12 keeps a margin of 100, while any change of a constant, "
                        "influence function, partial volume or kinematics moves the values by ≥ 1e-8.",
-                       "[pdmpm] docs/design.md (gold data); reference_data/README.md; regold provenance attributes of the file", "", "regression"});
+                       .source = "[pdmpm] docs/design.md (gold data); reference_data/README.md; regold provenance attributes of the file", .unit = "", .problem = "regression"});
   }
-  test::record_gate({"regression.gold_complete",
-                     "Every model × setting × influence case shall have gold in reference_data/regression_forces.h5 "
+  test::record_gate({.id = "regression.gold_complete",
+                     .claim = "Every model × setting × influence case shall have gold in reference_data/regression_forces.h5 "
                      "(a new model needs a regold; measured: number of cases missing)",
-                     static_cast<double>(missing), 0.0, 0.0, test::Compare::abs, "A count; none may be missing.",
-                     "[pdmpm] docs/verification/regression.md; verification/support/regression_cases.cpp", "", "regression"});
+                     .measured = static_cast<double>(missing), .expected = 0.0, .tolerance = 0.0, .compare = test::Compare::abs, .tolerance_reason = "A count; none may be missing.",
+                     .source = "[pdmpm] docs/verification/regression.md; verification/support/regression_cases.cpp", .unit = "", .problem = "regression"});
   const std::string root = "/";
   json prov = json::array();
   for (const char* k : {"git_sha", "tree", "date", "command", "compiler", "flags"})
@@ -122,11 +122,11 @@ TEST(FastRegression, PaperNumbersCarrySourcesAndReproduceTable42) {
                       file.has_attribute(p, "note") ? file.string_attribute(p, "note") : ""});
     }
   }
-  test::record_gate({"reference_data.paper_numbers_sourced",
-                     "reference_data/paper_numbers.h5 shall carry provenance (git sha, date, command, compiler) and a "
+  test::record_gate({.id = "reference_data.paper_numbers_sourced",
+                     .claim = "reference_data/paper_numbers.h5 shall carry provenance (git sha, date, command, compiler) and a "
                      "source for every number (measured: number of missing attributes)",
-                     static_cast<double>(missing), 0.0, 0.0, test::Compare::abs, "A count; none may be missing.",
-                     "[pdmpm] docs/design.md (gold data with provenance); reference_data/README.md", "", "regression"});
+                     .measured = static_cast<double>(missing), .expected = 0.0, .tolerance = 0.0, .compare = test::Compare::abs, .tolerance_reason = "A count; none may be missing.",
+                     .source = "[pdmpm] docs/design.md (gold data with provenance); reference_data/README.md", .unit = "", .problem = "regression"});
   EXPECT_GT(rows.size(), 20u);
 
   // Deryugin et al. 2023 table 4.2 as stored: c = k E/((1−2ν)πδ⁴) vs our c = 3E/(2π(1−2ν)I₃).
@@ -140,13 +140,13 @@ TEST(FastRegression, PaperNumbersCarrySourcesAndReproduceTable42) {
     const double ours = pd::pmb_micromodulus(w, pd::Setting::solid3d, {E, nu, 7850.0}, delta, 1.0);
     worst = std::max(worst, std::abs(printed / ours - 1.0));
   }
-  test::record_gate({"reference_data.seed001_table42",
-                     "Deryugin et al. 2023 table 4.2 as stored in reference_data/paper_numbers.h5 shall reproduce our 3D PMB "
+  test::record_gate({.id = "reference_data.seed001_table42",
+                     .claim = "Deryugin et al. 2023 table 4.2 as stored in reference_data/paper_numbers.h5 shall reproduce our 3D PMB "
                      "micromodulus for the six influence functions of the table (measured: worst relative difference)",
-                     worst, 0.0, 256 * std::numeric_limits<double>::epsilon(), test::Compare::abs,
-                     "Both are exact expressions in double; the exponential form amplifies the rounding of e by "
+                     .measured = worst, .expected = 0.0, .tolerance = 256 * std::numeric_limits<double>::epsilon(), .compare = test::Compare::abs,
+                     .tolerance_reason = "Both are exact expressions in double; the exponential form amplifies the rounding of e by "
                      "3e/(3e−8) ≈ 53 (see constants_gate.cpp, table42_tolerance_eps): ≤ 256ε.",
-                     "[deryugin2023] §4 table 4.2; constants.hpp", "", "regression"});
+                     .source = "[deryugin2023] §4 table 4.2; constants.hpp", .unit = "", .problem = "regression"});
   test::record_data("regression", "03_paper_numbers",
                     {{"kind", "table"},
                      {"title", "Reference numbers stored in reference_data/paper_numbers.h5"},

@@ -125,12 +125,12 @@ TEST(FastSphericalWave, ClosedFormMatchesOdeIntegration) {
       "the integrator is asked for 1e-14 relative per step over ~10³ steps; 1e-10 leaves room for the "
       "accumulated round-off and still catches any error in a coefficient of the closed form";
   const std::string src = "[pdmpm] docs/verification/spherical_wave.md: F' + (c_p/r₀)F = −c_p r₀ g(t); GSL gsl_odeiv2 rk8pd";
-  test::record_gate({"spherical_wave.analytic.potential_vs_ode", "The closed-form potential F(t) shall agree with GSL ODE integration to 1e-10 of max|F|",
-                     worst_F, 1e-10, 0, test::Compare::at_most, why, src, "", problem});
-  test::record_gate({"spherical_wave.analytic.displacement_vs_ode", "u_r(r, t) from the closed form shall agree with u_r from the integrated F to 1e-10 of max|u_r|",
-                     worst_u, 1e-10, 0, test::Compare::at_most, why, src, "", problem});
-  test::record_gate({"spherical_wave.analytic.velocity_vs_ode", "v_r(r, t) from the closed form shall agree with v_r from the integrated F to 1e-10 of max|v_r|",
-                     worst_v, 1e-10, 0, test::Compare::at_most, why, src, "", problem});
+  test::record_gate({.id = "spherical_wave.analytic.potential_vs_ode", .claim = "The closed-form potential F(t) shall agree with GSL ODE integration to 1e-10 of max|F|",
+                     .measured = worst_F, .expected = 1e-10, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = why, .source = src, .unit = "", .problem = problem});
+  test::record_gate({.id = "spherical_wave.analytic.displacement_vs_ode", .claim = "u_r(r, t) from the closed form shall agree with u_r from the integrated F to 1e-10 of max|u_r|",
+                     .measured = worst_u, .expected = 1e-10, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = why, .source = src, .unit = "", .problem = problem});
+  test::record_gate({.id = "spherical_wave.analytic.velocity_vs_ode", .claim = "v_r(r, t) from the closed form shall agree with v_r from the integrated F to 1e-10 of max|v_r|",
+                     .measured = worst_v, .expected = 1e-10, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = why, .source = src, .unit = "", .problem = problem});
 }
 
 // ---------------------------------------------------------------------------
@@ -151,11 +151,11 @@ TEST(FastSphericalWave, ParticleCountIs531414InBothReadings) {
       ASSERT_EQ(inner, src == Source::layer ? 0 : 27);
     }
     EXPECT_EQ(counts[0], counts[1]);
-    test::record_gate({std::string("spherical_wave.particles.") + name(r),
-                       std::string("The ") + name(r) + " reading (" + (r == Reading::octant ? "[0, 40 cm]³, Δx = 0.5 cm" : "[−40, 40 cm]³, Δx = 1 cm") +
+    test::record_gate({.id = std::string("spherical_wave.particles.") + name(r),
+                       .claim = std::string("The ") + name(r) + " reading (" + (r == Reading::octant ? "[0, 40 cm]³, Δx = 0.5 cm" : "[−40, 40 cm]³, Δx = 1 cm") +
                            ") shall have N = 81³ − 27 = 531414 particles outside the inner cube, as the seed states",
-                       static_cast<double>(counts[0]), static_cast<double>(paper_particles), 0, test::Compare::abs,
-                       "a count: exact", "[deryugin2023] §9: N = 531414; docs/verification/spherical_wave.md", "", problem});
+                       .measured = static_cast<double>(counts[0]), .expected = static_cast<double>(paper_particles), .tolerance = 0, .compare = test::Compare::abs,
+                       .tolerance_reason = "a count: exact", .source = "[deryugin2023] §9: N = 531414; docs/verification/spherical_wave.md", .unit = "", .problem = problem});
   }
 }
 
@@ -187,20 +187,20 @@ void fast_octant(const Case& c, const std::string& key, const FastBound& bound, 
                          {"rows",
                           {{100 * coarse.spacing, 100 * coarse.extent, rc.n_real, rc.dt, rc.steps, mc.l2, mc.max, rc.run_seconds},
                            {100 * paper.spacing, 100 * paper.extent, rp.n_real, rp.dt, rp.steps, mp.l2, mp.max, rp.run_seconds}}}});
-  test::record_gate({"spherical_wave.fast." + key + ".coarse_l2",
-                     "Octant at Δx = 1 cm (" + std::to_string(rc.n_real) + " particles), " + c.label +
+  test::record_gate({.id = "spherical_wave.fast." + key + ".coarse_l2",
+                     .claim = "Octant at Δx = 1 cm (" + std::to_string(rc.n_real) + " particles), " + c.label +
                          ": relative L2 error of u_r at t = 3×10⁻⁵ s shall stay within the bound from the convergence study",
-                     mc.l2, bound.l2_coarse, 0, test::Compare::at_most, bound_reason,
-                     "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", "", problem});
-  test::record_gate({"spherical_wave.fast." + key + ".paper_l2",
-                     "Octant at the paper's Δx = 0.5 cm (the 79 480 particles within 21 cm), " + c.label +
+                     .measured = mc.l2, .expected = bound.l2_coarse, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = bound_reason,
+                     .source = "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", .unit = "", .problem = problem});
+  test::record_gate({.id = "spherical_wave.fast." + key + ".paper_l2",
+                     .claim = "Octant at the paper's Δx = 0.5 cm (the 79 480 particles within 21 cm), " + c.label +
                          ": relative L2 error of u_r at t = 3×10⁻⁵ s shall stay within the bound from the convergence study",
-                     mp.l2, bound.l2_paper, 0, test::Compare::at_most, bound_reason,
-                     "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", "", problem});
-  test::record_gate({"spherical_wave.fast." + key + ".refinement_ratio",
-                     "Halving Δx from 1 cm to 0.5 cm (m = 3.015) shall reduce the L2 error (" + c.label + ")",
-                     mp.l2 / mc.l2, 1.0, 0, test::Compare::at_most,
-                     "δ-convergence: the error must fall as δ = 3.015 Δx halves", "[pdmpm] docs/verification/spherical_wave.md (convergence); [deryugin2023] §9", "", problem});
+                     .measured = mp.l2, .expected = bound.l2_paper, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = bound_reason,
+                     .source = "convergence study (verification/gates/convergence_gate.cpp), [deryugin2023] §9", .unit = "", .problem = problem});
+  test::record_gate({.id = "spherical_wave.fast." + key + ".refinement_ratio",
+                     .claim = "Halving Δx from 1 cm to 0.5 cm (m = 3.015) shall reduce the L2 error (" + c.label + ")",
+                     .measured = mp.l2 / mc.l2, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "δ-convergence: the error must fall as δ = 3.015 Δx halves", .source = "[pdmpm] docs/verification/spherical_wave.md (convergence); [deryugin2023] §9", .unit = "", .problem = problem});
 }
 
 // Bounds: the Full-tier study measured e₂(3×10⁻⁵ s) with these very runs (the
@@ -415,19 +415,19 @@ TEST(FullSphericalWave, PaperResolution) {
   double best_other = 1e9;
   for (const auto& c : cases)
     if (c.model == "pmb" && c.key() != "pmb_quadratic") best_other = std::min(best_other, results.at("octant/" + c.key()).metrics[2].l2);
-  test::record_gate({"spherical_wave.paper.pmb_quadratic_best",
-                     "PMB with the quadratic ω shall have the smallest L2 error of the six PMB influence functions at t = 3×10⁻⁵ s (octant, paper resolution)",
-                     results.at("octant/pmb_quadratic").metrics[2].l2 / best_other, 1.0, 0, test::Compare::at_most,
-                     "a ranking: the ratio to the best of the other five must be below 1",
-                     "[deryugin2023] §9: \"the best convergence to the analytic solution is with the quadratic bond stiffness function\"", "", problem});
-  test::record_gate({"spherical_wave.paper.lps_inverse_distance_better",
-                     "LPS with ω = 1/r shall be closer to the analytic solution than LPS with ω = 1 at t = 3×10⁻⁵ s (octant, paper resolution)",
-                     results.at("octant/lps_inverse_distance").metrics[2].l2 / results.at("octant/lps_constant").metrics[2].l2, 1.0, 0,
-                     test::Compare::at_most, "a ranking: the ratio must be below 1", "[deryugin2023] §9: " + percent(paper.lps_inverse_distance) + " (ω = 1/r) < " + percent(paper.lps_constant) + " (ω = 1)", "", problem});
+  test::record_gate({.id = "spherical_wave.paper.pmb_quadratic_best",
+                     .claim = "PMB with the quadratic ω shall have the smallest L2 error of the six PMB influence functions at t = 3×10⁻⁵ s (octant, paper resolution)",
+                     .measured = results.at("octant/pmb_quadratic").metrics[2].l2 / best_other, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "a ranking: the ratio to the best of the other five must be below 1",
+                     .source = "[deryugin2023] §9: \"the best convergence to the analytic solution is with the quadratic bond stiffness function\"", .unit = "", .problem = problem});
+  test::record_gate({.id = "spherical_wave.paper.lps_inverse_distance_better",
+                     .claim = "LPS with ω = 1/r shall be closer to the analytic solution than LPS with ω = 1 at t = 3×10⁻⁵ s (octant, paper resolution)",
+                     .measured = results.at("octant/lps_inverse_distance").metrics[2].l2 / results.at("octant/lps_constant").metrics[2].l2, .expected = 1.0, .tolerance = 0,
+                     .compare = test::Compare::at_most, .tolerance_reason = "a ranking: the ratio must be below 1", .source = "[deryugin2023] §9: " + percent(paper.lps_inverse_distance) + " (ω = 1/r) < " + percent(paper.lps_constant) + " (ω = 1)", .unit = "", .problem = problem});
   double worst_rss = 0;
   for (const auto& [k, r] : results) worst_rss = std::max(worst_rss, r.peak_rss_mb);
-  test::record_gate({"spherical_wave.paper.memory", "Every paper-resolution case shall fit the 24 GB machine (peak resident set, MB)",
-                     worst_rss, 24000, 0, test::Compare::at_most, "the machine's memory (issue 4)", "[pdmpm] docs/verification/spherical_wave.md; [deryugin2023] §9", "MB", problem});
+  test::record_gate({.id = "spherical_wave.paper.memory", .claim = "Every paper-resolution case shall fit the 24 GB machine (peak resident set, MB)",
+                     .measured = worst_rss, .expected = 24000, .tolerance = 0, .compare = test::Compare::at_most, .tolerance_reason = "the machine's memory (issue 4)", .source = "[pdmpm] docs/verification/spherical_wave.md; [deryugin2023] §9", .unit = "MB", .problem = problem});
 }
 
 // The octant with symmetry planes at Δx is the full cube at Δx: same step,
@@ -445,12 +445,12 @@ TEST(FullSphericalWave, OctantEqualsCubeAtOneCentimetre) {
     double diff = 0;
     for (std::size_t k = 0; k < ro.metrics.size(); ++k)
       diff = std::max({diff, std::abs(ro.metrics[k].l2 - rq.metrics[k].l2) / rq.metrics[k].l2, std::abs(ro.metrics[k].max - rq.metrics[k].max) / rq.metrics[k].max});
-    test::record_gate({"spherical_wave.symmetry." + c.key(),
-                       "The octant with three symmetry planes at Δx = 1 cm shall reproduce the full cube at Δx = 1 cm (" + c.label +
+    test::record_gate({.id = "spherical_wave.symmetry." + c.key(),
+                       .claim = "The octant with three symmetry planes at Δx = 1 cm shall reproduce the full cube at Δx = 1 cm (" + c.label +
                            ", e₂ and e_∞ at 3 and 7 ×10⁻⁵ s)",
-                       diff, 1e-9, 0, test::Compare::at_most,
-                       "the same lattice operator on the symmetric modes; only summation order differs (round-off ~1e-13)",
-                       "[pdmpm] docs/discretisation.md (mirror ghosts, solver/bc/symmetry.hpp)", "", problem});
+                       .measured = diff, .expected = 1e-9, .tolerance = 0, .compare = test::Compare::at_most,
+                       .tolerance_reason = "the same lattice operator on the symmetric modes; only summation order differs (round-off ~1e-13)",
+                       .source = "[pdmpm] docs/discretisation.md (mirror ghosts, solver/bc/symmetry.hpp)", .unit = "", .problem = problem});
   }
 }
 
@@ -549,12 +549,12 @@ TEST(FullSphericalWave, TruncatedOctantIsExactBeforeTheFrontArrives) {
   cut.extent = 0.21;
   const auto a = run(c, full), b = run(c, cut);
   const double diff = std::max(std::abs(a.metrics[0].l2 - b.metrics[0].l2) / a.metrics[0].l2, std::abs(a.metrics[0].max - b.metrics[0].max) / a.metrics[0].max);
-  test::record_gate({"spherical_wave.truncation", "The octant cut at 21 cm shall give the errors of the 40 cm octant at t = 3×10⁻⁵ s (LPS ω = 1/r, Δx = 0.5 cm)",
-                     diff, 1e-4, 0, test::Compare::at_most,
-                     "the reported errors carry 3–4 significant digits, so the cut must not move them by 1e-4; the front "
+  test::record_gate({.id = "spherical_wave.truncation", .claim = "The octant cut at 21 cm shall give the errors of the 40 cm octant at t = 3×10⁻⁵ s (LPS ω = 1/r, Δx = 0.5 cm)",
+                     .measured = diff, .expected = 1e-4, .tolerance = 0, .compare = test::Compare::at_most,
+                     .tolerance_reason = "the reported errors carry 3–4 significant digits, so the cut must not move them by 1e-4; the front "
                      "(c_p = 6.1 km/s) is at 19.4 cm and only the lattice's small precursor ahead of it (the force reaches δ per "
                      "step) touches the cut: measured 2e-6",
-                     "[pdmpm] docs/verification/spherical_wave.md (causality of the wave)", "", problem});
+                     .source = "[pdmpm] docs/verification/spherical_wave.md (causality of the wave)", .unit = "", .problem = problem});
 }
 
 }  // namespace

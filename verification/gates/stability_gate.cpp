@@ -120,17 +120,17 @@ void bounded_at_09() {
       idev = std::max(idev, std::abs(e - shadow() - I0) / E0);
       if (k % 25 == 0) ts.push_back(stepper.time()), es.push_back(e / E0);
     }
-    test::record_gate({"stability.bounded_0.9." + model + "." + dim_name(D),
-                       "At 0.9 × the Lanczos stable step, from a random initial velocity (all modes), the total "
+    test::record_gate({.id = "stability.bounded_0.9." + model + "." + dim_name(D),
+                       .claim = "At 0.9 × the Lanczos stable step, from a random initial velocity (all modes), the total "
                        "energy shall stay below E₀/(1 − 0.9²) over 10⁴ Verlet steps (" +
                            model + ", " + dim_name(D) + "; measured: max E/E₀)",
-                       emax, 1.0 / (1.0 - q), 0.0, test::Compare::at_most,
-                       "For the linear system Verlet conserves I_h = E − (Δt²/8)ΣV|f|²/ρ and (Δt²/8)ΣV|f|²/ρ ≤ "
+                       .measured = emax, .expected = 1.0 / (1.0 - q), .tolerance = 0.0, .compare = test::Compare::at_most,
+                       .tolerance_reason = "For the linear system Verlet conserves I_h = E − (Δt²/8)ΣV|f|²/ρ and (Δt²/8)ΣV|f|²/ρ ≤ "
                        "(λ_max Δt²/4) U = q U with q = 0.81 at 0.9 × Δt_crit, so (1 − q)E ≤ I_h = E₀ (u₀ = 0). "
                        "The bound is reached only if all energy sits in the top mode as strain energy; an unstable "
                        "step would grow without bound. Strains ≈ 1e-6 keep the body linear.",
-                       "[hairer2006] §IX; Lanczos estimate of solver/time/stable_step.hpp", "",
-                       "stability"});
+                       .source = "[hairer2006] §IX; Lanczos estimate of solver/time/stable_step.hpp", .unit = "",
+                       .problem = "stability"});
     rows.push_back({model, dim_name(D), p.n_real, lz.dt, lz.iterations, dt, emax, 1.0 / (1.0 - q), idev});
     test::record_data("stability", "bounded_plot_" + model + "_" + dim_name(D),
                       {{"kind", "plot"},
@@ -204,42 +204,42 @@ void unstable_at_15(json& rows) {
       const double printed_estimate = found ? std::stod(m[3].str()) : 0.0;
       const double in_process = estimate == "lanczos" ? dt_l : dt_sa;
       if (estimate == "lanczos") {
-        test::record_gate({"stability.unstable_1.5." + tag,
-                           "`pdmpm run` with stable_step = \"lanczos\" and safety_factor = 1.5 shall stop with exit "
+        test::record_gate({.id = "stability.unstable_1.5." + tag,
+                           .claim = "`pdmpm run` with stable_step = \"lanczos\" and safety_factor = 1.5 shall stop with exit "
                            "status 3 (" +
                                model + ", " + dim_name(D) + "; measured: exit status)",
-                           static_cast<double>(r.status), 3.0, 0.0, test::Compare::abs,
-                           "An exit status is exact. At 1.5 × Δt_crit the top mode grows by |z| ≈ 6.9 per step "
+                           .measured = static_cast<double>(r.status), .expected = 3.0, .tolerance = 0.0, .compare = test::Compare::abs,
+                           .tolerance_reason = "An exit status is exact. At 1.5 × Δt_crit the top mode grows by |z| ≈ 6.9 per step "
                            "(z² + 7z + 1 = 0), so the energy check stops the run within a few tens of steps.",
-                           "[pdmpm] docs/design.md (unstable runs stop with a message); README exit statuses", "", "stability"});
-        test::record_gate({"stability.unstable_message." + tag,
-                           "The message of that run shall name the step and the stable-step estimate, and the "
+                           .source = "[pdmpm] docs/design.md (unstable runs stop with a message); README exit statuses", .unit = "", .problem = "stability"});
+        test::record_gate({.id = "stability.unstable_message." + tag,
+                           .claim = "The message of that run shall name the step and the stable-step estimate, and the "
                            "estimate printed shall be the Lanczos step of the scene (" +
                                model + ", " + dim_name(D) + "; measured: |printed/in-process − 1|, 1 if absent)",
-                           found ? std::abs(printed_estimate / in_process - 1.0) : 1.0, 0.0, 1e-5, test::Compare::abs,
-                           "The message prints 6 significant digits: relative rounding ≤ 5e-6.",
-                           "[pdmpm] docs/design.md; solver/sim/pd_run.cpp stable()", "", "stability"});
+                           .measured = found ? std::abs(printed_estimate / in_process - 1.0) : 1.0, .expected = 0.0, .tolerance = 1e-5, .compare = test::Compare::abs,
+                           .tolerance_reason = "The message prints 6 significant digits: relative rounding ≤ 5e-6.",
+                           .source = "[pdmpm] docs/design.md; solver/sim/pd_run.cpp stable()", .unit = "", .problem = "stability"});
       } else {
-        test::record_gate({"stability.silling_askari_conservative." + tag,
-                           "The Silling–Askari step shall not exceed the Lanczos step (" + model + ", " +
+        test::record_gate({.id = "stability.silling_askari_conservative." + tag,
+                           .claim = "The Silling–Askari step shall not exceed the Lanczos step (" + model + ", " +
                                dim_name(D) + "; measured: Lanczos/S&A)",
-                           ratio, 1.0, 0.0, test::Compare::at_least,
-                           "S&A is a Gershgorin-type bound on λ_max, so it can only underestimate the step; "
+                           .measured = ratio, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::at_least,
+                           .tolerance_reason = "S&A is a Gershgorin-type bound on λ_max, so it can only underestimate the step; "
                            "Lanczos Ritz values approach λ_max from below, so its step can only overestimate. "
                            "Ratio ≥ 1 is the definition, no slack.",
-                           "[silling-askari2005]; solver/time/stable_step.hpp", "", "stability"});
+                           .source = "[silling-askari2005]; solver/time/stable_step.hpp", .unit = "", .problem = "stability"});
         // S&A is a lower bound of the true step: 1.5 × S&A is unstable only when Lanczos/S&A < 1.5.
         const int expected = ratio > 1.5 ? 0 : 3;
-        test::record_gate({"stability.silling_askari_1.5." + tag,
-                           "With stable_step = \"silling_askari\" and safety_factor = 1.5 the run shall complete if "
+        test::record_gate({.id = "stability.silling_askari_1.5." + tag,
+                           .claim = "With stable_step = \"silling_askari\" and safety_factor = 1.5 the run shall complete if "
                            "Lanczos/S&A > 1.5 and stop with exit status 3 otherwise (" +
                                model + ", " + dim_name(D) + ": Lanczos/S&A = " + std::to_string(ratio) +
                                ", so expected " + std::to_string(expected) + "; measured: exit status)",
-                           static_cast<double>(r.status), static_cast<double>(expected), 0.0, test::Compare::abs,
-                           "Exact: an exit status. The ratio is far enough from 1.5 here for the growth (or its "
+                           .measured = static_cast<double>(r.status), .expected = static_cast<double>(expected), .tolerance = 0.0, .compare = test::Compare::abs,
+                           .tolerance_reason = "Exact: an exit status. The ratio is far enough from 1.5 here for the growth (or its "
                            "absence) to be unambiguous within 400 steps (see the table).",
-                           "[silling-askari2005] (Gershgorin-type bound, never above the true limit)", "",
-                           "stability"});
+                           .source = "[silling-askari2005] (Gershgorin-type bound, never above the true limit)", .unit = "",
+                           .problem = "stability"});
       }
       rows.push_back({model, dim_name(D), estimate, dt_sa, dt_l, ratio, r.status,
                       found ? m[1].str() : std::string("—"), found ? printed_estimate : 0.0});
@@ -319,27 +319,27 @@ void record_lps_extreme(const std::string& tag, const std::string& what, const W
       "K as ν → ½ like the stiffest term. 1e-12 for m ≤ 3.015, 1e-11 for m = 8.";
   const bool big = tag.find("m8") != std::string::npos;
   const double tol = big ? 1e-11 : 1e-12;
-  test::record_gate({"stability." + tag + ".affine_force",
-                     "LPS at " + what + ": affine fields (isotropic, mixed; |H| = 1e-7, 0.3) shall give zero interior "
+  test::record_gate({.id = "stability." + tag + ".affine_force",
+                     .claim = "LPS at " + what + ": affine fields (isotropic, mixed; |H| = 1e-7, 0.3) shall give zero interior "
                      "force relative to M|H|/Δx (worst: " + force.where + ")",
-                     force.value, 0.0, tol, test::Compare::abs, reason, src, "", "stability"});
+                     .measured = force.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
   if (!rotation.where.empty())
-    test::record_gate({"stability." + tag + ".rotation_force",
-                       "LPS at " + what + ": rigid rotations by 30°, 90°, 180° shall give zero force at every "
+    test::record_gate({.id = "stability." + tag + ".rotation_force",
+                       .claim = "LPS at " + what + ": rigid rotations by 30°, 90°, 180° shall give zero force at every "
                        "particle (worst: " + rotation.where + ")",
-                       rotation.value, 0.0, tol, test::Compare::abs, reason, src, "", "stability"});
-  test::record_gate({"stability." + tag + ".dilatation",
-                     "LPS at " + what + ": θ (±H symmetrised) shall equal tr ε relative to |H| (worst: " +
+                       .measured = rotation.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+  test::record_gate({.id = "stability." + tag + ".dilatation",
+                     .claim = "LPS at " + what + ": θ (±H symmetrised) shall equal tr ε relative to |H| (worst: " +
                          theta.where + ")",
-                     theta.value, 0.0, tol, test::Compare::abs, reason, src, "", "stability"});
-  test::record_gate({"stability." + tag + ".energy_isotropic",
-                     "LPS at " + what + ": the isotropic-expansion energy density shall equal the classical one to "
+                     .measured = theta.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+  test::record_gate({.id = "stability." + tag + ".energy_isotropic",
+                     .claim = "LPS at " + what + ": the isotropic-expansion energy density shall equal the classical one to "
                      "rounding (worst: " + iso.where + ")",
-                     iso.value, 0.0, tol, test::Compare::abs, reason, src, "", "stability"});
-  test::record_gate({"stability." + tag + ".energy_lattice",
-                     "LPS at " + what + ": the energy density shall equal its linear lattice prediction, relative to "
+                     .measured = iso.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+  test::record_gate({.id = "stability." + tag + ".energy_lattice",
+                     .claim = "LPS at " + what + ": the energy density shall equal its linear lattice prediction, relative to "
                      "the classical W (worst: " + lattice.where + ")",
-                     lattice.value, 0.0, tol, test::Compare::abs, reason, src, "", "stability"});
+                     .measured = lattice.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
 }
 
 TEST(FastStability, LpsPatchAtExtremePoissonRatios) {
@@ -554,13 +554,13 @@ TEST(FastStability, DegenerateBodies) {
   }
   rows.push_back({"one particle, pdmpm run", "pmb", scene_refuses ? "InputError: no particle has a bond" : "ran",
                   "—", "—"});
-  test::record_gate({"stability.degenerate.one_particle",
-                     "A single particle (no bond) shall give zero, finite force, energy and θ for every model, an "
+  test::record_gate({.id = "stability.degenerate.one_particle",
+                     .claim = "A single particle (no bond) shall give zero, finite force, energy and θ for every model, an "
                      "infinite S&A step, a RunError from Lanczos, and a run shall be refused with an InputError "
                      "naming the cause (measured: 1 if all hold)",
-                     single_ok && scene_refuses ? 1.0 : 0.0, 1.0, 0.0, test::Compare::abs,
-                     "A yes/no property.", "[pdmpm] docs/design.md (bad input is an error, not a crash or a NaN)", "",
-                     "stability"});
+                     .measured = single_ok && scene_refuses ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::abs,
+                     .tolerance_reason = "A yes/no property.", .source = "[pdmpm] docs/design.md (bad input is an error, not a crash or a NaN)", .unit = "",
+                     .problem = "stability"});
 
   // Two particles: an oscillator with a closed-form frequency; Lanczos finds the same λ.
   double worst_freq = 0.0, worst_lanczos = 0.0;
@@ -573,22 +573,22 @@ TEST(FastStability, DegenerateBodies) {
     two_particles<3>(model, pd::Setting::solid3d, pair_rows, worst_freq, worst_lanczos, finite);
   }
   EXPECT_TRUE(finite);
-  test::record_gate({"stability.degenerate.two_particles_frequency",
-                     "Two particles Δx apart shall oscillate with the closed-form frequency ω² = 2cV/(ρΔx) (PMB) "
+  test::record_gate({.id = "stability.degenerate.two_particles_frequency",
+                     .claim = "Two particles Δx apart shall oscillate with the closed-form frequency ω² = 2cV/(ρΔx) (PMB) "
                      "or 4(A d + B)/(ρΔx²) (LPS) in every setting (measured: worst |ω²_Verlet/ω² − 1|)",
-                     worst_freq, 0.0, 1e-9, test::Compare::abs,
-                     "The Verlet recurrence r_{n+1} − 2r_n + r_{n−1} = −ω²Δt² r_n is exact for a linear oscillator; "
+                     .measured = worst_freq, .expected = 0.0, .tolerance = 1e-9, .compare = test::Compare::abs,
+                     .tolerance_reason = "The Verlet recurrence r_{n+1} − 2r_n + r_{n−1} = −ω²Δt² r_n is exact for a linear oscillator; "
                      "the amplitude 1e-12 m (strain 1e-9) leaves a nonlinear relative error ~1e-9 at most and the "
                      "second difference loses ~1e-13 to cancellation.",
-                     "[pdmpm] derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)", "",
-                     "stability"});
-  test::record_gate({"stability.degenerate.two_particles_lanczos",
-                     "For two particles the Lanczos estimate shall find λ_max = ω² of the pair (measured: worst "
+                     .source = "[pdmpm] derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)", .unit = "",
+                     .problem = "stability"});
+  test::record_gate({.id = "stability.degenerate.two_particles_lanczos",
+                     .claim = "For two particles the Lanczos estimate shall find λ_max = ω² of the pair (measured: worst "
                      "|λ/ω² − 1|)",
-                     worst_lanczos, 0.0, 1e-6, test::Compare::abs,
-                     "λ_max is the only non-zero eigenvalue; the Lanczos operator is a finite difference at strain "
+                     .measured = worst_lanczos, .expected = 0.0, .tolerance = 1e-6, .compare = test::Compare::abs,
+                     .tolerance_reason = "λ_max is the only non-zero eigenvalue; the Lanczos operator is a finite difference at strain "
                      "1e-7, whose nonlinear error is ~1e-7 relative.",
-                     "[silling-askari2005]; solver/time/stable_step.cpp", "", "stability"});
+                     .source = "[silling-askari2005]; solver/time/stable_step.cpp", .unit = "", .problem = "stability"});
 
   // Empty family: one particle of a block loses all its bonds (both sides).
   bool empty_ok = true;
@@ -623,11 +623,11 @@ TEST(FastStability, DegenerateBodies) {
     rows.push_back({"empty family (all bonds of one particle broken)", model,
                     ok ? "f = 0, W = 0, θ = 0, φ = 1; all other values finite" : "FAILED", "finite", "—"});
   }
-  test::record_gate({"stability.degenerate.empty_family",
-                     "A particle whose bonds are all broken shall get zero force, energy and θ, damage 1, and every "
+  test::record_gate({.id = "stability.degenerate.empty_family",
+                     .claim = "A particle whose bonds are all broken shall get zero force, energy and θ, damage 1, and every "
                      "other value shall stay finite (measured: 1 if all hold)",
-                     empty_ok ? 1.0 : 0.0, 1.0, 0.0, test::Compare::abs, "A yes/no property.",
-                     "[pdmpm] docs/design.md (no crash, no NaN); docs/models/pmb.md (damage)", "", "stability"});
+                     .measured = empty_ok ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::abs, .tolerance_reason = "A yes/no property.",
+                     .source = "[pdmpm] docs/design.md (no crash, no NaN); docs/models/pmb.md (damage)", .unit = "", .problem = "stability"});
   test::record_data("stability", "degenerate",
                     {{"kind", "table"},
                      {"title", "Degenerate bodies"},
@@ -679,16 +679,16 @@ TEST(FastStability, StiffAndSoftMaterialsScale) {
       worst = std::max(worst, d / umax);
       rows.push_back({model, E, 1e-4 * E, 2e-6 * std::sqrt(200e9 / E), dt_ref * std::sqrt(200e9 / E), d / umax});
     }
-    test::record_gate({"stability.scaling." + model,
-                       "A very soft (E = 1 Pa) and a very stiff (E = 1e15 Pa) plate under the same load history "
+    test::record_gate({.id = "stability.scaling." + model,
+                       .claim = "A very soft (E = 1 Pa) and a very stiff (E = 1e15 Pa) plate under the same load history "
                        "scaled with E (σ = 1e-4 E) and in time (t ∝ 1/√E) shall give the same u·E/σ as E = 200 GPa "
                        "(" + model + ", plane stress, 300 steps; measured: max |Δ(uE/σ)| / max |uE/σ|)",
-                       worst, 0.0, 1e-10, test::Compare::abs,
-                       "In units of Δx, √(E/ρ) and σ/E the discrete equations are identical; only the rounding of "
+                       .measured = worst, .expected = 0.0, .tolerance = 1e-10, .compare = test::Compare::abs,
+                       .tolerance_reason = "In units of Δx, √(E/ρ) and σ/E the discrete equations are identical; only the rounding of "
                        "products with E differs, a few u per operation, amplified by the 300 steps of an oscillating "
                        "system (≤ steps × ~100u ≈ 3e-12 in practice). 1e-10 separates rounding from any "
                        "E-dependent term (e.g. an absolute tolerance), which would be O(1) at E = 1 or 1e15.",
-                       "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/stability.md)", "", "stability"});
+                       .source = "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/stability.md)", .unit = "", .problem = "stability"});
   }
   test::record_data("stability", "scaling",
                     {{"kind", "table"},

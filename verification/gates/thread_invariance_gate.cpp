@@ -99,17 +99,17 @@ void invariance(json& rows) {
     EXPECT_GT(one.broken_bonds, 0) << "no fracture: the claim would not cover bond breaking";
     EXPECT_GT(one.contact_pairs_max, 0) << "no contact: the claim would not cover the contact loop";
     const std::string dim = std::to_string(D) + "d";
-    test::record_gate({"thread_invariance." + model + "." + dim,
-                       "A fracturing impact with contact (" + model + ", " + dim + ", " + std::to_string(steps) +
+    test::record_gate({.id = "thread_invariance." + model + "." + dim,
+                       .claim = "A fracturing impact with contact (" + model + ", " + dim + ", " + std::to_string(steps) +
                            " steps, " + std::to_string(one.broken_bonds) +
                            " bonds broken) shall give bitwise identical displacements, velocities, forces, broken "
                            "flags, damage and Lanczos step with 1 and 2 OpenMP threads (measured: number of values "
                            "that differ in any bit)",
-                       total, 0.0, 0.0, test::Compare::abs,
-                       "Bitwise identity is the claim: every loop gathers per particle in a fixed order and the "
+                       .measured = total, .expected = 0.0, .tolerance = 0.0, .compare = test::Compare::abs,
+                       .tolerance_reason = "Bitwise identity is the claim: every loop gathers per particle in a fixed order and the "
                        "reductions are integer counts or serial, so no rounding may depend on the thread count.",
-                       "[pdmpm] docs/design.md (gather-only loops, identical results for any thread count)", "",
-                       "thread_invariance"});
+                       .source = "[pdmpm] docs/design.md (gather-only loops, identical results for any thread count)", .unit = "",
+                       .problem = "thread_invariance"});
     rows.push_back({model, dim, static_cast<double>(one.u.size()), steps, one.broken_bonds, one.contact_pairs_max,
                     static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df),
                     static_cast<double>(db), static_cast<double>(dd), dt_same ? "identical" : "differs"});

@@ -131,7 +131,9 @@ TEST(MixedBody, EachMethodAdvancesOnlyItsOwnParticles) {
     for (Index i = 0; i < q.n_real; ++i) fmax = std::max(fmax, q.f[i].norm());
     ASSERT_GT(fmax, 0.0);
     for (Index i = 0, k = 0; i < p.n_real; ++i)
-      if (p.kind[i] == ParticleKind::pd) EXPECT_LE((p.f[i] - q.f[k++]).norm(), 1e-12 * fmax) << i;
+      if (p.kind[i] == ParticleKind::pd) {
+        EXPECT_LE((p.f[i] - q.f[k++]).norm(), 1e-12 * fmax) << i;
+      }
 
     // A PD step moves PD particles only.
     const auto u0 = p.u, v0 = p.v;
