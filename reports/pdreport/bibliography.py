@@ -45,8 +45,9 @@ def load_bibliography(path: Path) -> dict[str, Reference]:
                 break
             lines.append(line)
         entry = plain(" ".join(lines))
-        label = f"[{m.group(1)}]"  # the entry's own bold label, shown by the page separately
-        refs[m.group(1)] = Reference(m.group(1), entry[len(label):].lstrip() if entry.startswith(label) else entry)
+        # The entry's own bold label ("[key]" or "key —"): the page shows the key separately.
+        entry = re.sub(r"^\[?" + re.escape(m.group(1)) + r"\]?\s*(—\s*)?", "", entry)
+        refs[m.group(1)] = Reference(m.group(1), entry)
     return refs
 
 

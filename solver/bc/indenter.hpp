@@ -1,7 +1,7 @@
 #pragma once
 // Rigid spherical (3D) / cylindrical (2D) indenter moving at constant velocity,
 // pushing particles with F = k (R − r)² along the outward normal for r < R
-// (docs/verification/disk_impact.md; the form of LAMMPS' fix indent). F is a force per particle
+// (docs/verification/disk_impact_lammps.md; the form of LAMMPS' fix indent). F is a force per particle
 // in N, or with `force_density` a force density in N/m³: LAMMPS' PERI atoms
 // carry force densities (their "mass" is the density), so fix indent's k acts
 // per unit volume there.

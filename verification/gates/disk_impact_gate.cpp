@@ -1,5 +1,5 @@
 // Brittle disk struck by a rigid sphere, with each of the six influence functions
-// of Deryugin et al. 2023 table 4.1 (Deryugin et al. 2023 §10, figs 10.1–10.2; docs/verification/disk_impact.md). The
+// of Deryugin et al. 2023 table 4.1 (Deryugin et al. 2023 §10, figs 10.1–10.2; docs/verification/disk_impact_lammps.md). The
 // seed's reference is qualitative: damage pictures per ω. The report gets those
 // pictures (the top layer, as fig. 10.2, and the central section through the
 // impact in deformed positions, for the fragments of fig. 10.1) and a table of the
@@ -131,7 +131,7 @@ void run_all(double spacing, const std::string& tag) {
                      .tolerance_reason = "the disk, lattice and indenter are exactly symmetric; mirrored particles sum their bonds in mirrored "
                      "order, so a bond within round-off of s₀ can break a step earlier on one side and fragmentation "
                      "amplifies it. 5 % of the damage allows that and rejects a pattern that is not symmetric (~100 %)",
-                     .source = "[deryugin2023] §10 set-up (docs/verification/disk_impact.md)", .unit = "", .problem = problem});
+                     .source = "[deryugin2023] §10 set-up (docs/verification/disk_impact_lammps.md)", .unit = "", .problem = problem});
   test::record_data(problem, "01_table_" + tag,
                     {{"kind", "table"},
                      {"title", "Broken-bond fraction per influence function" + at},

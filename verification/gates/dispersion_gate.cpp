@@ -224,7 +224,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
                        "nonlinear kinematics at strain 1e-9 (relative ~1e-9) and rounding of the second difference, "
                        "which loses log10(1/(ωΔt)²) ≤ 4 digits (≤ 1e-12). 1e-7 leaves margin; a wrong coefficient "
                        "or moment would be ≥ 1e-3.",
-                       .source = "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/dispersion.md; [silling2000]", .unit = "", .problem = "dispersion"});
+                       .source = "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/convergence_dispersion.md; [silling2000]", .unit = "", .problem = "dispersion"});
 
   // 2. Long-wave limit on a converged lattice (ω = 1, extended ramp, m = 8.015): within 1 % of classical.
   Discretisation conv;

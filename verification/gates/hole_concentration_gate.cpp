@@ -296,7 +296,7 @@ TEST(FastHoleConcentration, SpeedAgainstAccuracy) {
                          (worst.empty() ? std::string() : " (not so for: " + worst + ")"),
                      .measured = refinement_pays ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0, .compare = test::Compare::at_least,
                      .tolerance_reason = "a yes/no check: the speed/accuracy plot is only a trade if more time buys accuracy",
-                     .source = "[pdmpm] docs/verification/hole_plate.md (speed/accuracy study)", .unit = "", .problem = problem});
+                     .source = "[pdmpm] docs/verification/hole_plate_kirsch.md (speed/accuracy study)", .unit = "", .problem = problem});
 }
 
 TEST(FullHoleConcentration, KtConverges) { study("full", {10, 20, 40, 80}); }

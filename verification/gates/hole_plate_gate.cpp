@@ -22,7 +22,7 @@ namespace {
 
 using nlohmann::json;
 const char* problem = "hole_plate";
-const char* source = "[gu-zhou2017] §5.1 (fig. 3); docs/verification/hole_plate.md";
+const char* source = "[gu-zhou2017] §5.1 (fig. 3); docs/verification/hole_plate_kirsch.md";
 
 // Paper's moments (fig. 3 a–d) and later ones at which this model's cracks grow.
 const std::vector<double> paper_moments{0.0133e-6, 11.97e-6, 13.3e-6, 15.96e-6};

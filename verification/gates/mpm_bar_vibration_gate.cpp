@@ -83,7 +83,7 @@ BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
 }
 
 const char* kProblem = "mpm_bar_vibration";
-const char* kSource = "[sulsky1995]; first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
+const char* kSource = "[sulsky-zhou-schreyer1995]; first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
 
 // Convergence in the cell size h (two particles per cell, CFL 0.1 so dt ∝ h).
 TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {

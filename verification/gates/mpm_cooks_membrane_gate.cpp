@@ -157,7 +157,7 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
                              .measured = tips.back(), .expected = kReference, .tolerance = 0.01, .compare = Compare::rel,
                              .tolerance_reason = "1 %: the staircase particle boundary and the particle quadrature converge at about "
                              "first order; the measured levels are within 0.6 %",
-                             .source = "[pian-sumihara1984]; [cook1989] (converged plane-stress value 23.96)",
+                             .source = "[pian-sumihara1984]; [cook-malkus-plesha1989] (converged plane-stress value 23.96)",
                              .unit = "", .problem = kProblem});
     }
     if (shape == mpm::ShapeFunction::linear) {

@@ -688,7 +688,7 @@ TEST(FastStability, StiffAndSoftMaterialsScale) {
                        "products with E differs, a few u per operation, amplified by the 300 steps of an oscillating "
                        "system (≤ steps × ~100u ≈ 3e-12 in practice). 1e-10 separates rounding from any "
                        "E-dependent term (e.g. an absolute tolerance), which would be O(1) at E = 1 or 1e15.",
-                       .source = "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/stability.md)", .unit = "", .problem = "stability"});
+                       .source = "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/conservation_stability.md)", .unit = "", .problem = "stability"});
   }
   test::record_data("stability", "scaling",
                     {{"kind", "table"},
