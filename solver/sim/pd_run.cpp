@@ -33,7 +33,7 @@ template <int D>
 class PdRun {
  public:
   PdRun(const io::Scene& scene, PdSetup<D>& setup, const RunOptions& options)
-      : scene_(scene), s_(setup), p_(setup.system.particles), opt_(options), state_(make_simulation(setup)) {}
+      : scene_(scene), s_(setup), p_(setup.system.particles), opt_(options), simulation_(make_simulation(setup)) {}
 
   RunResult run();
 
@@ -53,7 +53,7 @@ class PdRun {
   PdSetup<D>& s_;
   core::Particles<D>& p_;
   RunOptions opt_;
-  pd::Simulation<D> state_;
+  pd::Simulation<D> simulation_;
 
   double dt_ = 0.0, dt_sa_ = 0.0, dt_lanczos_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, history_every_ = 1, energy_every_ = 1;
@@ -62,7 +62,7 @@ class PdRun {
   double end_time_ = 0.0;
 
   // Energies of the last evaluation with energy, and the booked external work.
-  double ke_ = 0.0, u_ = 0.0, e0_ = 0.0, work_ = 0.0;
+  double kinetic_energy_ = 0.0, internal_energy_ = 0.0, initial_energy_ = 0.0, external_work_ = 0.0;
   std::string status_ = "completed", message_;
   time::RelaxationResult relax_;
 
@@ -240,9 +240,9 @@ void PdRun<D>::start_outputs() {
 
 template <int D>
 bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>& stepper) {
-  const double e = ke_ + u_;
+  const double e = kinetic_energy_ + internal_energy_;
   const double allowed =
-      scene_.time.energy_growth_limit * (e0_ + stepper.absolute_work() + stepper.pending_work()) + 1e-200;
+      scene_.time.energy_growth_limit * (initial_energy_ + stepper.absolute_work() + stepper.pending_work()) + 1e-200;
   if (std::isfinite(e) && e <= allowed) return true;
   const double estimate = dt_lanczos_ > 0 ? dt_lanczos_ : dt_sa_;
   std::ostringstream m;
@@ -257,19 +257,19 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
 
 template <int D>
 void PdRun<D>::history_row(std::int64_t step, double t) {
-  std::vector<double> row{static_cast<double>(step), t, ke_, u_, work_, ke_ + u_ - e0_ - work_};
-  const Vec<D> mom = state_.momentum();
-  const Eigen::Vector3d ang = state_.angular_momentum();
+  std::vector<double> row{static_cast<double>(step), t, kinetic_energy_, internal_energy_, external_work_, kinetic_energy_ + internal_energy_ - initial_energy_ - external_work_};
+  const Vec<D> mom = simulation_.momentum();
+  const Eigen::Vector3d ang = simulation_.angular_momentum();
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
   if constexpr (D == 2) row.push_back(ang[2]);
   if constexpr (D == 3)
     for (int a = 0; a < 3; ++a) row.push_back(ang[a]);
-  row.push_back(static_cast<double>(state_.broken_bonds()));
+  row.push_back(static_cast<double>(simulation_.broken_bonds()));
   const auto phi = pd::local_damage(s_.system);
   row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
-  if (s_.contact) row.push_back(static_cast<double>(state_.contact_pairs()));
+  if (s_.contact) row.push_back(static_cast<double>(simulation_.contact_pairs()));
   if (s_.indenter)
-    for (int a = 0; a < D; ++a) row.push_back(state_.indenter_force()[a]);
+    for (int a = 0; a < D; ++a) row.push_back(simulation_.indenter_force()[a]);
   for (const auto& c : s_.boundaries.constraints) {
     // Force the support exerts on the body, quasi-static: −Σ V (f + b).
     Vec<D> r = Vec<D>::Zero();
@@ -347,11 +347,11 @@ void PdRun<D>::maybe_frame(std::int64_t step, double t) {
 
 template <int D>
 void PdRun<D>::verlet() {
-  time::VelocityVerlet<D> stepper(state_, dt_);
+  time::VelocityVerlet<D> stepper(simulation_, dt_);
   stepper.start();
-  ke_ = state_.kinetic_energy();
-  u_ = state_.internal_energy();
-  e0_ = stepper.initial_energy();
+  kinetic_energy_ = simulation_.kinetic_energy();
+  internal_energy_ = simulation_.internal_energy();
+  initial_energy_ = stepper.initial_energy();
   history_row(0, 0.0);
   maybe_frame(0, 0.0);
   for (std::int64_t step = 1; step <= total_steps_; ++step) {
@@ -359,10 +359,10 @@ void PdRun<D>::verlet() {
     stepper.step(with_energy);
     const double t = stepper.time();
     steps_done_ = step;
-    work_ = stepper.external_work();
+    external_work_ = stepper.external_work();
     if (with_energy) {
-      ke_ = state_.kinetic_energy();
-      u_ = state_.internal_energy();
+      kinetic_energy_ = simulation_.kinetic_energy();
+      internal_energy_ = simulation_.internal_energy();
       if (!stable(step, t, stepper)) {
         history_row(step, t);
         frame(step, t);
@@ -371,29 +371,29 @@ void PdRun<D>::verlet() {
     }
     if (step % history_every_ == 0 || step == total_steps_) history_row(step, t);
     maybe_frame(step, t);
-    if (progress_) progress_->update(step, t, state_.broken_bonds());
+    if (progress_) progress_->update(step, t, simulation_.broken_bonds());
   }
 }
 
 template <int D>
 void PdRun<D>::adr() {
-  time::DynamicRelaxation<D> relax(state_);
+  time::DynamicRelaxation<D> relax(simulation_);
   s_.boundaries.apply_displacement(p_, 0.0, 0.0);
   p_.update_ghosts();
-  state_.forces(0.0, true);
-  state_.accept();
-  ke_ = 0.0;
-  u_ = e0_ = state_.internal_energy();
+  simulation_.forces(0.0, true);
+  simulation_.accept();
+  kinetic_energy_ = 0.0;
+  internal_energy_ = initial_energy_ = simulation_.internal_energy();
   history_row(0, 0.0);
   maybe_frame(0, 0.0);
   for (std::int64_t load = 1; load <= total_steps_; ++load) {
     const double t = static_cast<double>(load) / static_cast<double>(total_steps_);
     relax_ = relax.solve(t, scene_.time.tolerance, scene_.time.max_steps);
-    u_ = state_.internal_energy();
+    internal_energy_ = simulation_.internal_energy();
     steps_done_ = load;
     history_row(load, t);
     maybe_frame(load, t);
-    if (progress_) progress_->update(load, t, state_.broken_bonds());
+    if (progress_) progress_->update(load, t, simulation_.broken_bonds());
     if (!relax_.converged) {
       std::ostringstream m;
       m << "adaptive dynamic relaxation did not converge at load step " << load << " of " << total_steps_
@@ -443,23 +443,23 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"end_time", dynamic ? dt_ * static_cast<double>(steps_done_) : 1.0},
       {"threads", omp_get_max_threads()},
       {"wall_time_s", wall},
-      {"force_time_s", state_.force_seconds()},
-      {"contact_time_s", state_.contact_seconds()},
+      {"force_time_s", simulation_.force_seconds()},
+      {"contact_time_s", simulation_.contact_seconds()},
       {"bond_updates_per_second",
-       state_.force_seconds() > 0 ? static_cast<double>(state_.bond_evaluations()) / state_.force_seconds() : 0.0},
+       simulation_.force_seconds() > 0 ? static_cast<double>(simulation_.bond_evaluations()) / simulation_.force_seconds() : 0.0},
       {"peak_memory_bytes", peak_memory_bytes()},
       {"bytes_per_bond_side",
        (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
       {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
       {"metrics",
-       {{"broken_bonds", state_.broken_bonds()},
+       {{"broken_bonds", simulation_.broken_bonds()},
         {"precrack_cut_bonds", s_.precrack_cut / 2},
         {"max_damage", phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end())},
         {"max_displacement", umax},
-        {"kinetic_energy", ke_},
-        {"internal_energy", u_},
-        {"external_work", work_},
-        {"energy_error", ke_ + u_ - e0_ - work_},
+        {"kinetic_energy", kinetic_energy_},
+        {"internal_energy", internal_energy_},
+        {"external_work", external_work_},
+        {"energy_error", kinetic_energy_ + internal_energy_ - initial_energy_ - external_work_},
         {"critical_stretch", s_.critical_stretch}}},
       {"provenance", {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}};
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
@@ -478,7 +478,7 @@ RunResult PdRun<D>::run() {
   start_outputs();
   if (scene_.time.integrator == io::Integrator::verlet) verlet();
   else adr();
-  if (progress_) progress_->finish(steps_done_, static_cast<double>(steps_done_) * dt_, state_.broken_bonds());
+  if (progress_) progress_->finish(steps_done_, static_cast<double>(steps_done_) * dt_, simulation_.broken_bonds());
   if (fields_) fields_->close();
   history_.reset();
 
