@@ -1,24 +1,13 @@
 #include "solver/sim/mpm_run.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <fstream>
-#include <iostream>
-#include <memory>
 #include <sstream>
 
 #include "solver/core/error.hpp"
-#include "solver/io/fields_writer.hpp"
-#include "solver/io/history_writer.hpp"
-#include "solver/io/output_directory.hpp"
-#include "solver/io/progress.hpp"
 #include "solver/mpm/simulation.hpp"
-#include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
-#include "solver/core/build_info.hpp"
+#include "solver/sim/run_recorder.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -27,7 +16,8 @@ template <int D>
 class MpmRun {
  public:
   MpmRun(const io::Scene& scene, MpmSetup<D>& setup, const RunOptions& options)
-      : scene_(scene), s_(setup), p_(setup.particles), opt_(options), sim_(setup.settings, setup.particles, scene.file, "mpm") {
+      : scene_(scene), s_(setup), p_(setup.particles), sim_(setup.settings, setup.particles, scene.file, "mpm"),
+        rec_(scene, options) {
     check_boundary_nodes();
   }
 
@@ -40,24 +30,16 @@ class MpmRun {
   void history_row(std::int64_t step, double t);
   void frame(std::int64_t step, double t);
   bool stable(std::int64_t step, double t);
-  nlohmann::json summary(double wall) const;
+  nlohmann::json summary() const;
 
   const io::Scene& scene_;
   MpmSetup<D>& s_;
   core::Particles<D>& p_;
-  RunOptions opt_;
   mpm::Simulation<D> sim_;
+  RunRecorder rec_;
 
   double dt_ = 0.0, dt_cfl0_ = 0.0, end_time_ = 0.0, balance0_ = 0.0;
-  std::int64_t total_steps_ = 0, steps_done_ = 0, history_every_ = 1, failed_ = 0;
-  std::vector<std::int64_t> frames_;
-  std::size_t next_frame_ = 0;
-  std::string status_ = "completed", message_;
-
-  std::unique_ptr<io::OutputDirectory> out_;
-  std::unique_ptr<io::HistoryWriter> history_;
-  std::unique_ptr<io::FieldsWriter> fields_;
-  std::unique_ptr<io::Progress> progress_;
+  std::int64_t total_steps_ = 0, steps_done_ = 0, failed_ = 0;
 };
 
 // Each fixed/velocity region must hold a grid node, or the condition does nothing.
@@ -89,7 +71,7 @@ void MpmRun<D>::choose_time_step() {
 
 template <int D>
 void MpmRun<D>::start_outputs() {
-  out_ = std::make_unique<io::OutputDirectory>(opt_.out_dir);
+  rec_.plan(total_steps_, dt_);
   std::vector<std::string> cols{"step",           "time",           "kinetic_energy", "internal_energy",
                                 "plastic_work",   "external_work",  "boundary_work",  "damping_work",
                                 "energy_error"};
@@ -101,13 +83,7 @@ void MpmRun<D>::start_outputs() {
   for (const auto& pr : s_.probes)
     for (const char* q : {"u", "v"})
       for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
-  history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), cols);
-  if (opt_.write_fields)
-    fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", D);
-  if (opt_.progress) {
-    progress_ = std::make_unique<io::Progress>(std::cerr, io::Progress::stderr_is_terminal(), total_steps_, end_time_, scene_.id);
-    progress_->set_counter_name("failed");
-  }
+  rec_.start(cols, D, end_time_, "failed");
 }
 
 template <int D>
@@ -135,12 +111,13 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
     for (int a = 0; a < D; ++a) row.push_back(p_.u[pr.particle][a]);
     for (int a = 0; a < D; ++a) row.push_back(p_.v[pr.particle][a]);
   }
-  history_->write_row(row);
+  rec_.write_history(row);
 }
 
 template <int D>
 void MpmRun<D>::frame(std::int64_t step, double t) {
-  if (!fields_) return;
+  auto* writer = rec_.fields();
+  if (!writer) return;
   const Index n = p_.n_real;
   auto wants = [&](const char* name) {
     return std::find(scene_.output.fields.begin(), scene_.output.fields.end(), name) != scene_.output.fields.end();
@@ -177,7 +154,7 @@ void MpmRun<D>::frame(std::int64_t step, double t) {
     fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, scalar([&](Index i) { return sim_.eq_plastic_strain(i); })});
   if (wants("failed"))
     fields.push_back({"failed", io::FieldKind::scalar, scalar([&](Index i) { return sim_.failed(i) ? 1.0 : 0.0; })});
-  fields_->write_frame(step, t, vec3([&](Index i) { return p_.position(i); }), fields);
+  writer->write_frame(step, t, vec3([&](Index i) { return p_.position(i); }), fields);
 }
 
 // Unstable: non-finite energies, the stored + kinetic energy far above what the
@@ -199,13 +176,12 @@ bool MpmRun<D>::stable(std::int64_t step, double t) {
   } else {
     return true;
   }
-  status_ = "unstable";
-  message_ = m.str();
+  rec_.stop("unstable", m.str());
   return false;
 }
 
 template <int D>
-nlohmann::json MpmRun<D>::summary(double wall) const {
+nlohmann::json MpmRun<D>::summary() const {
   const auto e = sim_.energies();
   double umax = 0.0, max_eps = 0.0, max_vm = 0.0;
   for (Index i = 0; i < p_.n_real; ++i) {
@@ -214,12 +190,7 @@ nlohmann::json MpmRun<D>::summary(double wall) const {
     max_vm = std::max(max_vm, sim_.von_mises(i));
   }
   const auto& st = s_.settings;
-  return {{"scene", scene_.id},
-          {"file", scene_.file},
-          {"description", scene_.description},
-          {"status", status_},
-          {"message", message_},
-          {"solver", "mpm"},
+  return {{"solver", "mpm"},
           {"model", "mpm"},
           {"constitutive", std::string(mpm::name(st.material.model))},
           {"shape_function", std::string(mpm::name(st.shape))},
@@ -230,15 +201,9 @@ nlohmann::json MpmRun<D>::summary(double wall) const {
           {"cell_size", sim_.cell_size()},
           {"particles", p_.n_real},
           {"grid_nodes", sim_.grid().size()},
-          {"steps", steps_done_},
-          {"steps_requested", total_steps_},
           {"dt", dt_},
           {"dt_estimate", {{"cfl_step_at_start", dt_cfl0_}}},
           {"end_time", dt_ * static_cast<double>(steps_done_)},
-          {"threads", omp_get_max_threads()},
-          {"wall_time_s", wall},
-          {"peak_memory_bytes", peak_memory_bytes()},
-          {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
           {"metrics",
            {{"failed_particles", failed_},
             {"max_eq_plastic_strain", max_eps},
@@ -251,18 +216,14 @@ nlohmann::json MpmRun<D>::summary(double wall) const {
             {"boundary_work", e.boundary_work},
             {"damping_work", e.damping_work},
             {"energy_error", e.balance() - balance0_},
-            {"total_mass", sim_.total_mass()}}},
-          {"provenance", {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}};
+            {"total_mass", sim_.total_mass()}}}};
 }
 
 template <int D>
 RunResult MpmRun<D>::run() {
-  const auto t0 = std::chrono::steady_clock::now();
   choose_time_step();
-  history_every_ = history_interval(scene_.output, total_steps_);
-  const std::int64_t check_every = std::min<std::int64_t>(history_every_, 10);
-  frames_ = frame_steps(scene_.output, total_steps_, dt_);
   start_outputs();
+  const std::int64_t check_every = std::min<std::int64_t>(rec_.history_every(), 10);
   balance0_ = sim_.energies().balance();
   for (std::int64_t step = 0; step <= total_steps_; ++step) {
     if (step > 0) {
@@ -277,18 +238,11 @@ RunResult MpmRun<D>::run() {
       frame(step, t);
       break;
     }
-    if (step % history_every_ == 0 || last) history_row(step, t);
-    if (next_frame_ < frames_.size() && frames_[next_frame_] == step) {
-      frame(step, t);
-      ++next_frame_;
-    }
-    if (progress_ && step > 0) progress_->update(step, t, failed_);
+    if (rec_.history_due(step)) history_row(step, t);
+    if (rec_.frame_due(step)) frame(step, t);
+    if (step > 0) rec_.progress(step, t, failed_);
   }
-  if (progress_) progress_->finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_);
-  if (fields_) fields_->close();
-  history_.reset();
-
-  return commit_run(*out_, status_, message_, summary(seconds_since(t0)));
+  return rec_.finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_, p_.n_real, summary());
 }
 
 }  // namespace

@@ -1,30 +1,21 @@
 #include "solver/sim/pd_run.hpp"
 
-#include <omp.h>
-
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <fstream>
-#include <iostream>
 #include <limits>
 #include <optional>
 #include <sstream>
 
 #include "solver/core/error.hpp"
-#include "solver/io/fields_writer.hpp"
-#include "solver/io/history_writer.hpp"
-#include "solver/io/output_directory.hpp"
-#include "solver/io/progress.hpp"
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/pd/stress.hpp"
 #include "solver/time/dynamic_relaxation.hpp"
-#include "solver/sim/output_schedule.hpp"
+#include "solver/sim/crack_report.hpp"
+#include "solver/sim/run_recorder.hpp"
 #include "solver/sim/run_metrics.hpp"
 #include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
-#include "solver/core/build_info.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -33,132 +24,38 @@ template <int D>
 class PdRun {
  public:
   PdRun(const io::Scene& scene, PdSetup<D>& setup, const RunOptions& options)
-      : scene_(scene), s_(setup), p_(setup.system.particles), opt_(options), simulation_(make_simulation(setup)) {}
+      : scene_(scene), s_(setup), p_(setup.system.particles), simulation_(make_simulation(setup)), rec_(scene, options) {}
 
   RunResult run();
 
  private:
   void choose_time_step();
-  void plan_outputs();
   void start_outputs();
   void history_row(std::int64_t step, double t);
   void frame(std::int64_t step, double t);
-  void maybe_frame(std::int64_t step, double t);
+  void maybe_frame(std::int64_t step, double t) {
+    if (rec_.frame_due(step)) frame(step, t);
+  }
   bool stable(std::int64_t step, double t, const time::VelocityVerlet<D>& stepper);
   void verlet();
   void adr();
-  nlohmann::json summary(double wall) const;
+  nlohmann::json summary() const;
 
   const io::Scene& scene_;
   PdSetup<D>& s_;
   core::Particles<D>& p_;
-  RunOptions opt_;
   pd::Simulation<D> simulation_;
+  RunRecorder rec_;
 
   double dt_ = 0.0, dt_sa_ = 0.0, dt_lanczos_ = 0.0;
-  std::int64_t total_steps_ = 0, steps_done_ = 0, history_every_ = 1, energy_every_ = 1;
-  std::vector<std::int64_t> frame_steps_;
-  std::size_t next_frame_ = 0;
+  std::int64_t total_steps_ = 0, steps_done_ = 0, energy_every_ = 1;
   double end_time_ = 0.0;
 
   // Energies of the last evaluation with energy, and the booked external work.
   double kinetic_energy_ = 0.0, internal_energy_ = 0.0, initial_energy_ = 0.0, external_work_ = 0.0;
-  std::string status_ = "completed", message_;
   time::RelaxationResult relax_;
-
-  std::unique_ptr<io::OutputDirectory> out_;
-  std::unique_ptr<io::HistoryWriter> history_;
-  std::unique_ptr<io::FieldsWriter> fields_;
-  std::unique_ptr<io::Progress> progress_;
   std::optional<pd::CrackObservables<D>> crack_;
 };
-
-// Crack observables as history columns and summary metrics (definitions in
-// solver/pd/crack_observables.hpp).
-template <int D>
-std::vector<std::string> crack_columns(const pd::CrackObservables<D>& c) {
-  std::vector<std::string> cols{"cracked_particles", "components", "pieces", "cracks"};
-  for (int a = 0; a < D; ++a) cols.push_back(std::string("crack_tip_") + axis_name(a));
-  cols.insert(cols.end(), {"crack_extent", "crack_angle_deg", "crack_speed", "crack_overall_angle_deg"});
-  for (const auto& loc : c.locations()) cols.push_back("broken_bonds_" + loc.name);
-  return cols;
-}
-
-template <int D>
-void crack_values(const pd::CrackObservables<D>& c, std::vector<double>& row) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  std::size_t active = 0;
-  for (const auto& p : c.paths()) active += !p.ended;
-  row.insert(row.end(), {static_cast<double>(c.cracked()), static_cast<double>(c.components()),
-                         static_cast<double>(c.pieces()), static_cast<double>(active)});
-  const auto* lead = c.leading();
-  for (int a = 0; a < D; ++a) row.push_back(lead ? lead->tip.back()[a] : nan);
-  row.push_back(lead ? lead->extent.back() : 0.0);
-  row.push_back(lead ? lead->angle_deg() : nan);
-  row.push_back(lead ? lead->speed.back() : nan);
-  row.push_back(c.cracked() >= 2 ? c.overall_angle_deg() : nan);
-  for (std::size_t k = 0; k < c.locations().size(); ++k) row.push_back(static_cast<double>(c.broken_at(k)));
-}
-
-template <int D>
-nlohmann::json crack_summary(const pd::CrackObservables<D>& c, const pd::System<D>& sys) {
-  auto opt = [](std::optional<double> v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); };
-  auto vec = [](const Vec<D>& v) {
-    std::vector<double> out(v.data(), v.data() + D);
-    return out;
-  };
-  nlohmann::json j;
-  j["threshold"] = c.settings().threshold;
-  j["path_threshold"] = c.settings().path_threshold;
-  j["min_piece_fraction"] = c.settings().min_piece_fraction;
-  j["rayleigh_speed"] = pd::rayleigh_speed(sys.material, sys.setting);
-  j["speed_window"] = c.speed_window();
-  j["initiation_time"] = opt(c.initiation_time());
-  // Where cracking started: the particles cracked at the initiation time.
-  nlohmann::json sites = nlohmann::json::array();
-  for (Index i : c.initiation_particles()) sites.push_back(vec(sys.particles.x0[i]));
-  j["initiation_sites"] = sites;
-  j["separation_time"] = opt(c.separation_time());
-  j["components"] = c.components();
-  j["pieces"] = c.pieces();
-  j["initial_pieces"] = c.initial_pieces();
-  j["cracked_particles"] = c.cracked();
-  j["overall_angle_deg"] = c.overall_angle_deg();
-  j["overall_angle_at_separation_deg"] =
-      std::isfinite(c.separation_angle_deg()) ? nlohmann::json(c.separation_angle_deg()) : nlohmann::json(nullptr);
-  j["max_speed"] = c.max_speed();
-  nlohmann::json loc = nlohmann::json::object();
-  for (std::size_t k = 0; k < c.locations().size(); ++k) {
-    const auto& l = c.locations()[k];
-    loc[l.name] = {{"point", vec(l.point)}, {"radius", l.radius}, {"first_bond_failure", opt(c.first_failure(k))},
-                   {"broken_bonds", c.broken_at(k)}};
-  }
-  j["locations"] = loc;
-  nlohmann::json cracks = nlohmann::json::array();
-  for (const auto& p : c.paths()) {
-    nlohmann::json path = {{"t", p.time}, {"extent", p.extent}};
-    for (int a = 0; a < D; ++a) {
-      std::vector<double> xa;
-      for (const auto& tip : p.tip) xa.push_back(tip[a]);
-      path[axis_name(a)] = xa;
-    }
-    std::vector<nlohmann::json> speed;
-    for (double v : p.speed) speed.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
-    path["speed"] = speed;
-    cracks.push_back({{"origin", vec(p.origin)},
-                      {"start_time", p.time.front()},
-                      {"last_time", p.time.back()},
-                      {"ended", p.ended},
-                      {"members", p.members},
-                      {"tip", vec(p.tip.back())},
-                      {"extent", p.extent.back()},
-                      {"angle_deg", p.angle_deg()},
-                      {"max_speed", p.max_speed()},
-                      {"path", path}});
-  }
-  j["cracks"] = cracks;
-  return j;
-}
 
 template <int D>
 void PdRun<D>::choose_time_step() {
@@ -199,17 +96,11 @@ void PdRun<D>::choose_time_step() {
 }
 
 template <int D>
-void PdRun<D>::plan_outputs() {
-  history_every_ = history_interval(scene_.output, total_steps_);
-  energy_every_ = std::min<std::int64_t>(history_every_, 10);
-  // ADR: t is the load factor, one per load step.
-  const double per_step = scene_.time.integrator == io::Integrator::verlet ? dt_ : 1.0 / static_cast<double>(total_steps_);
-  frame_steps_ = frame_steps(scene_.output, total_steps_, per_step);
-}
-
-template <int D>
 void PdRun<D>::start_outputs() {
-  out_ = std::make_unique<io::OutputDirectory>(opt_.out_dir);
+  // ADR: t is the load factor, one per load step.
+  const bool dynamic = scene_.time.integrator == io::Integrator::verlet;
+  rec_.plan(total_steps_, dynamic ? dt_ : 1.0 / static_cast<double>(total_steps_));
+  energy_every_ = std::min<std::int64_t>(rec_.history_every(), 10);
   std::vector<std::string> cols{"step", "time", "kinetic_energy", "internal_energy", "external_work", "energy_error"};
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   if constexpr (D == 2) cols.push_back("angular_momentum_z");
@@ -230,12 +121,7 @@ void PdRun<D>::start_outputs() {
     const auto more = crack_columns(*crack_);
     cols.insert(cols.end(), more.begin(), more.end());
   }
-  history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), cols);
-  if (opt_.write_fields)
-    fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", D);
-  if (opt_.progress)
-    progress_ = std::make_unique<io::Progress>(std::cerr, io::Progress::stderr_is_terminal(), total_steps_,
-                                               scene_.time.integrator == io::Integrator::verlet ? end_time_ : 0.0, scene_.id);
+  rec_.start(cols, D, dynamic ? end_time_ : 0.0);
 }
 
 template <int D>
@@ -250,8 +136,7 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
     << scene_.time.energy_growth_limit << " × (initial energy + work done) = " << allowed << " J. Time step " << dt_
     << " s; stable-step estimate " << estimate << " s (" << (dt_lanczos_ > 0 ? "Lanczos" : "Silling–Askari")
     << "), i.e. this run used " << dt_ / estimate << " × the estimate";
-  status_ = "unstable";
-  message_ = m.str();
+  rec_.stop("unstable", m.str());
   return false;
 }
 
@@ -288,12 +173,13 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     crack_->sample(s_.system, phi, t);
     crack_values(*crack_, row);
   }
-  history_->write_row(row);
+  rec_.write_history(row);
 }
 
 template <int D>
 void PdRun<D>::frame(std::int64_t step, double t) {
-  if (!fields_) return;
+  auto* writer = rec_.fields();
+  if (!writer) return;
   const Index n = p_.n_real;
   auto wants = [&](const char* name) {
     return std::find(scene_.output.fields.begin(), scene_.output.fields.end(), name) != scene_.output.fields.end();
@@ -334,15 +220,7 @@ void PdRun<D>::frame(std::int64_t step, double t) {
       fields.push_back({"von_mises", io::FieldKind::scalar, vm});
     }
   }
-  fields_->write_frame(step, t, vec3(pos), fields);
-}
-
-template <int D>
-void PdRun<D>::maybe_frame(std::int64_t step, double t) {
-  if (next_frame_ < frame_steps_.size() && frame_steps_[next_frame_] == step) {
-    frame(step, t);
-    ++next_frame_;
-  }
+  writer->write_frame(step, t, vec3(pos), fields);
 }
 
 template <int D>
@@ -355,7 +233,7 @@ void PdRun<D>::verlet() {
   history_row(0, 0.0);
   maybe_frame(0, 0.0);
   for (std::int64_t step = 1; step <= total_steps_; ++step) {
-    const bool with_energy = step % energy_every_ == 0 || step % history_every_ == 0 || step == total_steps_;
+    const bool with_energy = step % energy_every_ == 0 || rec_.history_due(step);
     stepper.step(with_energy);
     const double t = stepper.time();
     steps_done_ = step;
@@ -369,9 +247,9 @@ void PdRun<D>::verlet() {
         return;
       }
     }
-    if (step % history_every_ == 0 || step == total_steps_) history_row(step, t);
+    if (rec_.history_due(step)) history_row(step, t);
     maybe_frame(step, t);
-    if (progress_) progress_->update(step, t, simulation_.broken_bonds());
+    rec_.progress(step, t, simulation_.broken_bonds());
   }
 }
 
@@ -393,21 +271,20 @@ void PdRun<D>::adr() {
     steps_done_ = load;
     history_row(load, t);
     maybe_frame(load, t);
-    if (progress_) progress_->update(load, t, simulation_.broken_bonds());
+    rec_.progress(load, t, simulation_.broken_bonds());
     if (!relax_.converged) {
       std::ostringstream m;
       m << "adaptive dynamic relaxation did not converge at load step " << load << " of " << total_steps_
         << ": residual " << relax_.residual << " after " << relax_.iterations << " iterations (tolerance "
         << scene_.time.tolerance << "; raise time.max_steps or loosen time.tolerance)";
-      status_ = "not_converged";
-      message_ = m.str();
+      rec_.stop("not_converged", m.str());
       return;
     }
   }
 }
 
 template <int D>
-nlohmann::json PdRun<D>::summary(double wall) const {
+nlohmann::json PdRun<D>::summary() const {
   const auto& sys = s_.system;
   const auto phi = pd::local_damage(sys);
   double umax = 0.0;
@@ -416,11 +293,6 @@ nlohmann::json PdRun<D>::summary(double wall) const {
   if (dt_lanczos_ > 0) dt_est["lanczos"] = dt_lanczos_;
   const bool dynamic = scene_.time.integrator == io::Integrator::verlet;
   nlohmann::json j = {
-      {"scene", scene_.id},
-      {"file", scene_.file},
-      {"description", scene_.description},
-      {"status", status_},
-      {"message", message_},
       {"solver", "pd"},
       {"model", s_.model->name()},
       {"influence", std::string(pd::name(sys.influence))},
@@ -436,21 +308,15 @@ nlohmann::json PdRun<D>::summary(double wall) const {
       {"bonds", sys.families.n_bonds() / 2},
       {"bond_sides", sys.families.n_bonds()},
       {"integrator", dynamic ? "verlet" : "adr"},
-      {"steps", steps_done_},
-      {"steps_requested", total_steps_},
       {"dt", dynamic ? dt_ : 1.0},
       {"dt_estimate", dt_est},
       {"end_time", dynamic ? dt_ * static_cast<double>(steps_done_) : 1.0},
-      {"threads", omp_get_max_threads()},
-      {"wall_time_s", wall},
       {"force_time_s", simulation_.force_seconds()},
       {"contact_time_s", simulation_.contact_seconds()},
       {"bond_updates_per_second",
        simulation_.force_seconds() > 0 ? static_cast<double>(simulation_.bond_evaluations()) / simulation_.force_seconds() : 0.0},
-      {"peak_memory_bytes", peak_memory_bytes()},
       {"bytes_per_bond_side",
        (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
-      {"particle_steps_per_second", wall > 0 ? static_cast<double>(p_.n_real) * static_cast<double>(steps_done_) / wall : 0.0},
       {"metrics",
        {{"broken_bonds", simulation_.broken_bonds()},
         {"precrack_cut_bonds", s_.precrack_cut / 2},
@@ -460,8 +326,7 @@ nlohmann::json PdRun<D>::summary(double wall) const {
         {"internal_energy", internal_energy_},
         {"external_work", external_work_},
         {"energy_error", kinetic_energy_ + internal_energy_ - initial_energy_ - external_work_},
-        {"critical_stretch", s_.critical_stretch}}},
-      {"provenance", {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}};
+        {"critical_stretch", s_.critical_stretch}}}};
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;
@@ -472,17 +337,12 @@ nlohmann::json PdRun<D>::summary(double wall) const {
 
 template <int D>
 RunResult PdRun<D>::run() {
-  const auto t0 = std::chrono::steady_clock::now();
   choose_time_step();
-  plan_outputs();
   start_outputs();
   if (scene_.time.integrator == io::Integrator::verlet) verlet();
   else adr();
-  if (progress_) progress_->finish(steps_done_, static_cast<double>(steps_done_) * dt_, simulation_.broken_bonds());
-  if (fields_) fields_->close();
-  history_.reset();
-
-  return commit_run(*out_, status_, message_, summary(seconds_since(t0)));
+  return rec_.finish(steps_done_, static_cast<double>(steps_done_) * dt_, simulation_.broken_bonds(), p_.n_real,
+                     summary());
 }
 
 }  // namespace

@@ -1,0 +1,80 @@
+#pragma once
+// What every run writes, whichever method moves the body: the staged output
+// directory (all or nothing), history.csv, fields.h5 + fields.xdmf, the frame
+// and history schedule, progress, the status of a run that stops early, and the
+// summary keys every run has. A method's run (pd_run, mpm_run, and the hybrid's
+// later) is a thin adaptor: it owns the time loop and contributes its history
+// columns and rows, its fields and its own summary keys.
+//
+// The adaptor calls the recorder, not the other way round: the loops of the
+// methods differ (Verlet steps, ADR load steps, MPM steps; a hybrid step), and
+// each already knows when it has a row or a frame to give.
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "solver/io/fields_writer.hpp"
+#include "solver/io/history_writer.hpp"
+#include "solver/io/output_directory.hpp"
+#include "solver/io/progress.hpp"
+#include "solver/io/scene.hpp"
+#include "solver/sim/run.hpp"
+
+namespace pdmpm::sim {
+
+class RunRecorder {
+ public:
+  RunRecorder(const io::Scene& scene, const RunOptions& options);
+
+  // The schedule: `total_steps` steps (or load steps), `time_per_step` to place
+  // frames given by time. History every `history_every()` steps and at the last.
+  void plan(std::int64_t total_steps, double time_per_step);
+  std::int64_t total_steps() const { return total_steps_; }
+  std::int64_t history_every() const { return history_every_; }
+  bool history_due(std::int64_t step) const { return step % history_every_ == 0 || step == total_steps_; }
+
+  // Stages the output directory and opens history (with these columns), the
+  // fields writer (unless the run was asked not to write fields) and progress
+  // (lines up to `progress_end_time`, 0 for a load factor; `counter` names the
+  // count in each line).
+  void start(const std::vector<std::string>& columns, int dimension, double progress_end_time,
+             const std::string& counter = "broken");
+
+  void write_history(const std::vector<double>& row) { history_->write_row(row); }
+  // True once per scheduled frame step (then write it to fields()).
+  bool frame_due(std::int64_t step);
+  // Null when fields are not written.
+  io::FieldsWriter* fields() { return fields_.get(); }
+  void progress(std::int64_t step, double t, std::int64_t count) {
+    if (progress_) progress_->update(step, t, count);
+  }
+
+  // The run stops early: "unstable" or "not_converged", with the message for the user.
+  void stop(std::string status, std::string message);
+  const std::string& status() const { return status_; }
+  const std::string& message() const { return message_; }
+
+  // Closes the outputs, writes summary.json — the method's keys plus the keys
+  // every run has — and commits the directory. Exit code 0 when completed, 3 otherwise.
+  RunResult finish(std::int64_t steps_done, double t, std::int64_t count, Index particles, nlohmann::json method_keys);
+
+ private:
+  const io::Scene& scene_;
+  RunOptions options_;
+  std::chrono::steady_clock::time_point t0_;
+  std::int64_t total_steps_ = 0, history_every_ = 1;
+  std::vector<std::int64_t> frame_steps_;
+  std::size_t next_frame_ = 0;
+  std::string status_ = "completed", message_;
+
+  std::unique_ptr<io::OutputDirectory> out_;
+  std::unique_ptr<io::HistoryWriter> history_;
+  std::unique_ptr<io::FieldsWriter> fields_;
+  std::unique_ptr<io::Progress> progress_;
+};
+
+}  // namespace pdmpm::sim
