@@ -12,12 +12,13 @@ namespace {
 
 void verlet_step(benchmark::State& state, const char* model) {
   const double n = static_cast<double>(state.range(0));
-  const std::string text = "[scene]\nid = \"b\"\n[discretization]\ndimension = 3\nspacing = 1e-3\nhorizon_ratio = 3.015\n"
-                           "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [" +
-                           std::to_string((n - 1) * 1e-3) + ", " + std::to_string((n - 1) * 1e-3) + ", " +
-                           std::to_string((n - 1) * 1e-3) +
-                           "]\n[material]\ndensity = 7850\nyoungs_modulus = 200e9\npoissons_ratio = 0.25\n"
-                           "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";
+  const std::string text =
+      "[scene]\nid = \"b\"\n[discretization]\ndimension = 3\nspacing = 1e-3\nhorizon_ratio = 3.015\n"
+      "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [" +
+      std::to_string((n - 1) * 1e-3) + ", " + std::to_string((n - 1) * 1e-3) + ", " + std::to_string((n - 1) * 1e-3) +
+      "]\n[material]\ndensity = 7850\nyoungs_modulus = 200e9\npoissons_ratio = 0.25\n"
+      "[model]\ntype = \"" +
+      model + "\"\n[time]\nsteps = 1\n";
   const auto scene = io::parse_scene_text(text, "bench");
   auto setup = sim::build_pd<3>(scene);
   for (Index i = 0; i < setup.system.n_real(); ++i) setup.system.particles.v[i][0] = std::sin(i * 0.1);

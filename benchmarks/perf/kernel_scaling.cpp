@@ -108,43 +108,57 @@ json kernel_scaling(const Options& o) {
     const double frac1 = rate1 * bytes.total / bw_1, frac_n = rate_n * bytes.total / bw_n;
     json account = json::array();
     for (const auto& [name, b] : bytes.items) account.push_back({name, b});
-    out["models"][model] = {
-        {"bond_sides", sides},
-        {"particles", big[m].setup.system.n_real()},
-        {"seconds_per_evaluation", {{"1", t1[m]}, {std::to_string(threads), t2[m]}}},
-        {"in_cache_seconds_per_evaluation", {{"1", c1[m]}, {std::to_string(threads), c2[m]}}},
-        {"in_cache_bond_sides", small[m].sides},
-        {"speedup_threads", to_json(scaling)},
-        {"bond_sides_per_s", {{"1", rate1}, {std::to_string(threads), rate_n}}},
-        {"in_cache_bond_sides_per_s", {{"1", cache1}, {std::to_string(threads), cache_n}}},
-        {"bytes_per_bond_side", bytes.total},
-        {"byte_account", account},
-        {"bandwidth_fraction", {{"1", frac1}, {std::to_string(threads), frac_n}}},
-        {"bandwidth_bound_bond_sides_per_s", {{"1", bw_1 / bytes.total}, {std::to_string(threads), bw_n / bytes.total}}},
-        {"cycles_per_bond_side_1_thread", mhz > 0 ? mhz * 1e6 / rate1 : 0.0}};
+    out["models"][model] = {{"bond_sides", sides},
+                            {"particles", big[m].setup.system.n_real()},
+                            {"seconds_per_evaluation", {{"1", t1[m]}, {std::to_string(threads), t2[m]}}},
+                            {"in_cache_seconds_per_evaluation", {{"1", c1[m]}, {std::to_string(threads), c2[m]}}},
+                            {"in_cache_bond_sides", small[m].sides},
+                            {"speedup_threads", to_json(scaling)},
+                            {"bond_sides_per_s", {{"1", rate1}, {std::to_string(threads), rate_n}}},
+                            {"in_cache_bond_sides_per_s", {{"1", cache1}, {std::to_string(threads), cache_n}}},
+                            {"bytes_per_bond_side", bytes.total},
+                            {"byte_account", account},
+                            {"bandwidth_fraction", {{"1", frac1}, {std::to_string(threads), frac_n}}},
+                            {"bandwidth_bound_bond_sides_per_s",
+                             {{"1", bw_1 / bytes.total}, {std::to_string(threads), bw_n / bytes.total}}},
+                            {"cycles_per_bond_side_1_thread", mhz > 0 ? mhz * 1e6 / rate1 : 0.0}};
     const std::string name = model == "pmb" ? "PMB" : "LPS";
     target({.id = "performance.threads_" + model,
-            .claim = fmt::format("the {} force kernel shall run at least 1.8× faster on 2 threads than on 1 ({:.3g} bond sides)",
-                        name, sides),
-            .measured = scaling.value, .expected = 1.8, .tolerance = 0.0, .compare = test::Compare::at_least,
-            .tolerance_reason = fmt::format("a target (issue 6). Ratio of medians of {} interleaved repetitions; bootstrap 95 % interval "
-                        "[{:.3g}, {:.3g}]. Gather-only loops need no atomics; the two cores share the last-level cache "
-                        "and the memory bus: the triad in the same run scales {:.2f}× (interval [{:.3g}, {:.3g}]); "
-                        "in-cache problem {:.2f}×",
-                        o.reps, scaling.lo, scaling.hi, triad_scaling.value, triad_scaling.lo, triad_scaling.hi,
-                        median(c1[m]) / median(c2[m])),
-            .source = "[pdmpm] docs/design.md (performance targets)", .unit = "×", .problem = problem});
+            .claim = fmt::format(
+                "the {} force kernel shall run at least 1.8× faster on 2 threads than on 1 ({:.3g} bond sides)", name,
+                sides),
+            .measured = scaling.value,
+            .expected = 1.8,
+            .tolerance = 0.0,
+            .compare = test::Compare::at_least,
+            .tolerance_reason = fmt::format(
+                "a target (issue 6). Ratio of medians of {} interleaved repetitions; bootstrap 95 % interval "
+                "[{:.3g}, {:.3g}]. Gather-only loops need no atomics; the two cores share the last-level cache "
+                "and the memory bus: the triad in the same run scales {:.2f}× (interval [{:.3g}, {:.3g}]); "
+                "in-cache problem {:.2f}×",
+                o.reps, scaling.lo, scaling.hi, triad_scaling.value, triad_scaling.lo, triad_scaling.hi,
+                median(c1[m]) / median(c2[m])),
+            .source = "[pdmpm] docs/design.md (performance targets)",
+            .unit = "×",
+            .problem = problem});
     if (model == "pmb")
       target({.id = "performance.bandwidth_fraction_pmb",
-              .claim = fmt::format("the PMB force kernel on {} threads shall move at least 50 % of the memory bandwidth a triad "
-                          "reaches on as many threads, counting {:.2f} bytes per bond side from the data layout",
-                          threads, bytes.total),
-              .measured = frac_n, .expected = 0.5, .tolerance = 0.0, .compare = test::Compare::at_least,
-              .tolerance_reason = fmt::format("a target (issue 6), with a written account when missed: the same kernel on a problem that "
-                          "fits in the last-level cache runs at {:.3g} bond sides/s on 1 thread against {:.3g} from "
-                          "memory (×{:.2f}); {:.1f} cycles per bond side at the nominal clock",
-                          cache1, rate1, cache1 / rate1, mhz > 0 ? mhz * 1e6 / rate1 : 0.0),
-              .source = "[pdmpm] docs/design.md (performance targets); STREAM triad [mccalpin1995]", .unit = "", .problem = problem});
+              .claim = fmt::format(
+                  "the PMB force kernel on {} threads shall move at least 50 % of the memory bandwidth a triad "
+                  "reaches on as many threads, counting {:.2f} bytes per bond side from the data layout",
+                  threads, bytes.total),
+              .measured = frac_n,
+              .expected = 0.5,
+              .tolerance = 0.0,
+              .compare = test::Compare::at_least,
+              .tolerance_reason = fmt::format(
+                  "a target (issue 6), with a written account when missed: the same kernel on a problem that "
+                  "fits in the last-level cache runs at {:.3g} bond sides/s on 1 thread against {:.3g} from "
+                  "memory (×{:.2f}); {:.1f} cycles per bond side at the nominal clock",
+                  cache1, rate1, cache1 / rate1, mhz > 0 ? mhz * 1e6 / rate1 : 0.0),
+              .source = "[pdmpm] docs/design.md (performance targets); STREAM triad [mccalpin1995]",
+              .unit = "",
+              .problem = problem});
   }
   return out;
 }

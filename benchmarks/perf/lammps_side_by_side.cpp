@@ -102,21 +102,37 @@ json lammps_side_by_side(const std::string& model, const Options& o) {
 
   const std::string size = fmt::format("{} particles, {:.3g} bond sides", reference.system.n_real(), sides);
   target({.id = "performance.lammps_" + model + ".speedup",
-          .claim = fmt::format("pdmpm's force evaluation ({}: bond kernel + short-range contact) shall do at least 5× the bond "
-                      "evaluations per second per core of LAMMPS {} (its Pair time) on the same 3D problem ({})",
-                      model == "pmb" ? "PMB" : "LPS, ω = 1/|ξ|", style, size),
-          .measured = speedup.value, .expected = 5.0, .tolerance = 0.0, .compare = test::Compare::at_least,
-          .tolerance_reason = fmt::format("a target, not a tolerance (issue 6). Ratio of medians of {} interleaved repetitions of {} steps "
-                      "in one process run, one core each; bootstrap 95 % interval [{:.3g}, {:.3g}]",
-                      o.reps, o.steps, speedup.lo, speedup.hi),
-          .source = "[pdmpm] docs/design.md (performance targets); [parks2008]; LAMMPS src/PERI/pair_peri_" + model + ".cpp", .unit = "×", .problem = problem});
+          .claim = fmt::format(
+              "pdmpm's force evaluation ({}: bond kernel + short-range contact) shall do at least 5× the bond "
+              "evaluations per second per core of LAMMPS {} (its Pair time) on the same 3D problem ({})",
+              model == "pmb" ? "PMB" : "LPS, ω = 1/|ξ|", style, size),
+          .measured = speedup.value,
+          .expected = 5.0,
+          .tolerance = 0.0,
+          .compare = test::Compare::at_least,
+          .tolerance_reason = fmt::format(
+              "a target, not a tolerance (issue 6). Ratio of medians of {} interleaved repetitions of {} steps "
+              "in one process run, one core each; bootstrap 95 % interval [{:.3g}, {:.3g}]",
+              o.reps, o.steps, speedup.lo, speedup.hi),
+          .source =
+              "[pdmpm] docs/design.md (performance targets); [parks2008]; LAMMPS src/PERI/pair_peri_" + model + ".cpp",
+          .unit = "×",
+          .problem = problem});
   target({.id = "performance.lammps_" + model + ".displacement",
-          .claim = fmt::format("in the timed runs, the displacement fields of pdmpm and LAMMPS {} shall agree at every particle "
-                      "to 1e-6 of the largest displacement after {} steps", style, o.steps),
-          .measured = agree, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
-          .tolerance_reason = "same model, partial volumes, contact rule, indenter law and integrator: only round-off differs (as the "
-          "elastic LAMMPS gate, lammps_comparison_gate.cpp)",
-          .source = "[parks2008]; [thompson2022]; verification/support/lammps.hpp", .unit = "", .problem = problem});
+          .claim = fmt::format(
+              "in the timed runs, the displacement fields of pdmpm and LAMMPS {} shall agree at every particle "
+              "to 1e-6 of the largest displacement after {} steps",
+              style, o.steps),
+          .measured = agree,
+          .expected = 1e-6,
+          .tolerance = 0.0,
+          .compare = test::Compare::at_most,
+          .tolerance_reason =
+              "same model, partial volumes, contact rule, indenter law and integrator: only round-off differs (as the "
+              "elastic LAMMPS gate, lammps_comparison_gate.cpp)",
+          .source = "[parks2008]; [thompson2022]; verification/support/lammps.hpp",
+          .unit = "",
+          .problem = problem});
 
   return {{"model", model},
           {"lammps_style", style},
@@ -132,8 +148,11 @@ json lammps_side_by_side(const std::string& model, const Options& o) {
           {"bond_evaluations_per_rep", evals},
           {"pdmpm", {{"force_s", ours_pair}, {"kernel_s", kernel}, {"contact_s", contact}, {"loop_s", ours_loop}}},
           {"lammps",
-           {{"pair_s", lmp_pair}, {"loop_s", lmp_loop}, {"loop_minus_output_s", lmp_compute},
-            {"sections_last_rep", lmp.sections}, {"memory_mbytes_estimate", lmp.memory_mbytes}}},
+           {{"pair_s", lmp_pair},
+            {"loop_s", lmp_loop},
+            {"loop_minus_output_s", lmp_compute},
+            {"sections_last_rep", lmp.sections},
+            {"memory_mbytes_estimate", lmp.memory_mbytes}}},
           {"bond_evals_per_s_per_core",
            {{"pdmpm", ours_rate}, {"pdmpm_kernel_only", evals / median(kernel)}, {"lammps", lmp_rate}}},
           {"speedup_force_vs_pair", to_json(speedup)},

@@ -33,7 +33,7 @@ nlohmann::json memory_per_bond(const std::string& model, bool gate) {
     // and, for LPS, m, θ, Aθ/m, 1/m and B/m.
     layout_bond = sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t);
     layout_particle = sizeof(BondIndex) + sizeof(IVec<3>) + 7 * sizeof(Vec<3>) + sizeof(double) + 1 +
-                      (model == "lps" ? 5 * sizeof(double) : 0);
+        (model == "lps" ? 5 * sizeof(double) : 0);
   }
   const double peak = (after.peak_bytes - before.resident_bytes) / sides;
   const double resident = (after.resident_bytes - before.resident_bytes) / sides;
@@ -41,15 +41,23 @@ nlohmann::json memory_per_bond(const std::string& model, bool gate) {
   fmt::print("  {:.4g} bond sides: peak {:.2f} B/bond, resident {:.2f} B/bond, layout account {:.2f} B/bond\n", sides,
              peak, resident, layout);
   if (gate)
-    target({.id = "performance.memory_per_bond",
-            .claim = fmt::format("building and starting the {:.3g}-bond-side 3D {} problem shall raise the process' peak "
-                        "resident memory by at most 16 bytes per bond side (families, per-bond state and all "
-                        "per-particle arrays of a run)", sides, model == "pmb" ? "PMB" : "LPS"),
-            .measured = peak, .expected = 16.0, .tolerance = 0.0, .compare = test::Compare::at_most,
-            .tolerance_reason = reset ? "a target (issue 6); VmHWM was reset before the build, so the number is the build's own peak"
-                  : "a target (issue 6); VmHWM could not be reset (/proc/self/clear_refs refused): the peak may "
-                    "include earlier allocations and overstate the cost",
-            .source = "[pdmpm] docs/design.md (performance targets); /proc/self/status VmHWM, VmRSS", .unit = "B", .problem = problem});
+    target(
+        {.id = "performance.memory_per_bond",
+         .claim = fmt::format("building and starting the {:.3g}-bond-side 3D {} problem shall raise the process' peak "
+                              "resident memory by at most 16 bytes per bond side (families, per-bond state and all "
+                              "per-particle arrays of a run)",
+                              sides, model == "pmb" ? "PMB" : "LPS"),
+         .measured = peak,
+         .expected = 16.0,
+         .tolerance = 0.0,
+         .compare = test::Compare::at_most,
+         .tolerance_reason = reset
+             ? "a target (issue 6); VmHWM was reset before the build, so the number is the build's own peak"
+             : "a target (issue 6); VmHWM could not be reset (/proc/self/clear_refs refused): the peak may "
+               "include earlier allocations and overstate the cost",
+         .source = "[pdmpm] docs/design.md (performance targets); /proc/self/status VmHWM, VmRSS",
+         .unit = "B",
+         .problem = problem});
   return {{"model", model},
           {"refine", refine},
           {"bond_sides", sides},

@@ -9,7 +9,7 @@ namespace pdmpm::perf {
 double median(std::vector<double> v);
 
 struct Ratio {
-  double value = 0.0;  // median(num) / median(den)
+  double value = 0.0;         // median(num) / median(den)
   double lo = 0.0, hi = 0.0;  // 95 % percentile bootstrap interval
 };
 
