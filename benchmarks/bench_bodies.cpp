@@ -15,7 +15,7 @@ pd::System<D> lattice_body(int n, double horizon_ratio) {
   g.add(std::make_unique<core::Box<D>>(Vec<D>::Zero(), Vec<D>::Constant((n - 1) * dx)));
   pd::System<D> sys;
   sys.particles = core::fill_lattice<D>(g, lat, std::pow(dx, D) * (D == 2 ? 1e-3 : 1.0));
-  sys.setting = D == 3 ? pd::Setting::solid3d : pd::Setting::plane_strain;
+  sys.setting = D == 3 ? core::Setting::solid3d : core::Setting::plane_strain;
   sys.material = {200e9, 0.25, 7850.0};
   sys.delta = horizon_ratio * dx;
   sys.measure = D == 3 ? 1.0 : 1e-3;

@@ -10,14 +10,14 @@ namespace pdmpm::app {
 
 int constants_command(const ConstantsArgs& a) {
   using namespace pdmpm::pd;
-  const Setting settings[] = {Setting::bar1d, Setting::plane_stress, Setting::plane_strain, Setting::solid3d};
-  auto measure = [&](Setting s) { return s == Setting::bar1d ? a.area : s == Setting::solid3d ? 1.0 : a.thickness; };
-  const Elastic mat{a.E, a.nu, 1.0};
+  const core::Setting settings[] = {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d};
+  auto measure = [&](core::Setting s) { return s == core::Setting::bar1d ? a.area : s == core::Setting::solid3d ? 1.0 : a.thickness; };
+  const core::Elastic mat{a.E, a.nu, 1.0};
 
   nlohmann::json j;
   j["input"] = {{"E", a.E}, {"nu", a.nu}, {"delta", a.delta}, {"thickness", a.thickness}, {"area", a.area}, {"G0", a.G0}};
   j["note"] = "PMB constants are computed for the given nu; the PMB model itself admits only nu = 1/4 (3D, plane strain) or 1/3 (plane stress).";
-  for (Setting s : settings) {
+  for (core::Setting s : settings) {
     nlohmann::json js;
     const auto k = lps_coefficients(s, mat);
     js["lps"] = {{"A", k.A}, {"B", k.B}, {"kappa", k.kappa}};
@@ -38,7 +38,7 @@ int constants_command(const ConstantsArgs& a) {
   std::cout << fmt::format("Bond constants for E = {:.6g} Pa, ν = {:.6g}, δ = {:.6g} m, h = {:.6g} m, A = {:.6g} m²{}\n",
                            a.E, a.nu, a.delta, a.thickness, a.area, a.G0 > 0 ? fmt::format(", G₀ = {:.6g} J/m²", a.G0) : "");
   std::cout << "(PMB admits only ν = 1/4 in 3D and plane strain, 1/3 in plane stress; values for other ν are formal.)\n";
-  for (Setting s : settings) {
+  for (core::Setting s : settings) {
     std::cout << fmt::format("\n[{}]\n", name(s));
     std::cout << fmt::format("  {:<18} {:>22} {:>22}{}\n", "influence ω", "PMB c", "LPS m (continuum)", a.G0 > 0 ? fmt::format(" {:>16}", "s₀ from G₀") : "");
     for (Influence w : all_influences) {

@@ -78,19 +78,19 @@ void check_analytic_parameters(const std::string& name, const std::map<std::stri
 
 template <int D>
 std::unique_ptr<AnalyticField<D>> make_analytic_field(const std::string& name, const std::map<std::string, double>& p,
-                                                      const pd::Elastic& material, pd::Setting setting) {
+                                                      const core::Elastic& material, core::Setting setting) {
   check_analytic_parameters(name, p);
   if (name == "affine") return std::make_unique<Affine<D>>(p);
   if (name == "spherical_wave")
-    return std::make_unique<SphericalWaveField<D>>(p, std::sqrt(material.longitudinal_modulus(setting) / material.rho));
+    return std::make_unique<SphericalWaveField<D>>(p, std::sqrt(material.wave_modulus(setting) / material.rho));
   throw std::invalid_argument("unknown analytic field '" + name + "'");
 }
 
 template std::unique_ptr<AnalyticField<1>> make_analytic_field<1>(const std::string&, const std::map<std::string, double>&,
-                                                                  const pd::Elastic&, pd::Setting);
+                                                                  const core::Elastic&, core::Setting);
 template std::unique_ptr<AnalyticField<2>> make_analytic_field<2>(const std::string&, const std::map<std::string, double>&,
-                                                                  const pd::Elastic&, pd::Setting);
+                                                                  const core::Elastic&, core::Setting);
 template std::unique_ptr<AnalyticField<3>> make_analytic_field<3>(const std::string&, const std::map<std::string, double>&,
-                                                                  const pd::Elastic&, pd::Setting);
+                                                                  const core::Elastic&, core::Setting);
 
 }  // namespace pdmpm::bc

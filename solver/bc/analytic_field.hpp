@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "solver/core/types.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::bc {
 
@@ -28,6 +28,6 @@ void check_analytic_parameters(const std::string& name, const std::map<std::stri
 
 template <int D>
 std::unique_ptr<AnalyticField<D>> make_analytic_field(const std::string& name, const std::map<std::string, double>& p,
-                                                      const pd::Elastic& material, pd::Setting setting);
+                                                      const core::Elastic& material, core::Setting setting);
 
 }  // namespace pdmpm::bc

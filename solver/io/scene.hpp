@@ -10,7 +10,7 @@
 
 #include "solver/mpm/settings.hpp"
 #include "solver/pd/influence.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 #include "solver/pd/partial_volume.hpp"
 
 namespace pdmpm::io {
@@ -25,6 +25,13 @@ struct ShapeSpec {
 };
 
 enum class BoundaryKind { fixed, displacement, velocity, traction, analytic };
+constexpr std::array<EnumName<BoundaryKind>, 5> names(BoundaryKind) {
+  return {{{BoundaryKind::fixed, "fixed"},
+           {BoundaryKind::displacement, "displacement"},
+           {BoundaryKind::velocity, "velocity"},
+           {BoundaryKind::traction, "traction"},
+           {BoundaryKind::analytic, "analytic"}}};
+}
 
 struct BoundarySpec {
   std::string key, name;
@@ -83,8 +90,27 @@ struct ObserveSpec {
   double radius = 0.0;  // 0 → δ
 };
 
+// verlet: dynamic (velocity Verlet); adr: quasi-static (adaptive dynamic relaxation).
 enum class Integrator { verlet, adr };
+constexpr std::array<EnumName<Integrator>, 2> names(Integrator) {
+  return {{{Integrator::verlet, "verlet"}, {Integrator::adr, "adr"}}};
+}
 enum class StableStepEstimate { silling_askari, lanczos };
+constexpr std::array<EnumName<StableStepEstimate>, 2> names(StableStepEstimate) {
+  return {{{StableStepEstimate::silling_askari, "silling_askari"}, {StableStepEstimate::lanczos, "lanczos"}}};
+}
+// model.break_timing: before_force (default: a bond at s ≥ s₀ breaks before it acts) or
+// after_force (it acts once more and breaks if s > s₀, as in LAMMPS).
+enum class BreakTiming { before_force, after_force };
+constexpr std::array<EnumName<BreakTiming>, 2> names(BreakTiming) {
+  return {{{BreakTiming::before_force, "before_force"}, {BreakTiming::after_force, "after_force"}}};
+}
+// model.weighted_volume (state-based models): discrete (default: the sum over each
+// family) or continuum (the integral over a full horizon, Gu & Zhou 2017 eq 15).
+enum class WeightedVolume { discrete, continuum };
+constexpr std::array<EnumName<WeightedVolume>, 2> names(WeightedVolume) {
+  return {{{WeightedVolume::discrete, "discrete"}, {WeightedVolume::continuum, "continuum"}}};
+}
 
 struct TimeSpec {
   Integrator integrator = Integrator::verlet;
@@ -118,8 +144,6 @@ struct MpmSpec {
   double damping_viscous = 0.0, damping_local = 0.0;
   mpm::Nonlocal nonlocal;
   mpm::MaterialModel constitutive = mpm::MaterialModel::linear_elastic;
-  double yield_stress = 0.0, tangent_modulus = 0.0;
-  mpm::Failure failure;
 };
 
 // Which method integrates the body. `pd` and `mpm` follow from [model] type;
@@ -129,13 +153,15 @@ enum class Method { pd, mpm, hybrid };
 struct Scene {
   std::string file, id, description;
   int dimension = 3;
-  pd::Setting setting = pd::Setting::solid3d;
+  core::Setting setting = core::Setting::solid3d;
   double spacing = 0.0, delta = 0.0, measure = 1.0;
   std::optional<std::vector<double>> lattice_origin;
   pd::PartialVolume partial_volume = pd::PartialVolume::seed001;
   std::vector<ShapeSpec> shapes;
 
-  pd::Elastic material;
+  core::Elastic material;
+  core::J2Hardening hardening;     // [material] yield_stress, tangent_modulus (plastic laws)
+  core::DuctileFailure failure;    // [material.failure] (plastic laws)
   std::optional<double> critical_stretch, fracture_energy;
   Method method = Method::pd;
   std::string model = "pmb";  // the PD model's name (model table), or "mpm"

@@ -7,31 +7,30 @@ namespace pdmpm::io {
 
 void read_mpm_material(const TomlReader& m, Scene& s) {
   MpmSpec& spec = *s.mpm;
-  if (auto c = m.optional_string("constitutive"))
-    spec.constitutive = mpm::parse_material_model(*c, m.file(), m.path("constitutive"));
+  if (auto c = m.optional_enum<mpm::MaterialModel>("constitutive")) spec.constitutive = *c;
   const bool j2 = spec.constitutive == mpm::MaterialModel::j2;
   if (j2) {
-    spec.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
-    spec.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
+    s.hardening.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
+    s.hardening.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
   } else {
     for (const char* key : {"yield_stress", "tangent_modulus"})
       if (m.has(key)) m.fail(key, "only for constitutive = \"j2\"");
   }
   if (auto f = m.optional_table("failure")) {
     if (!j2) m.fail("failure", "the ductile criterion needs constitutive = \"j2\" (it acts on the equivalent plastic strain)");
-    spec.failure.enabled = f->boolean("enabled", true);
-    spec.failure.d0 = f->positive("d0", f->number("d0"));
-    spec.failure.c = f->number("c");
-    if (auto r = f->optional_string("rule")) spec.failure.rule = mpm::parse_failure_rule(*r, f->file(), f->path("rule"));
+    s.failure.enabled = f->boolean("enabled", true);
+    s.failure.d0 = f->positive("d0", f->number("d0"));
+    s.failure.c = f->number("c");
+    if (auto r = f->optional_enum<core::FailureRule>("rule")) s.failure.rule = *r;
     f->finish();
   }
 }
 
 void read_mpm_options(const TomlReader& t, Scene& s) {
   MpmSpec& spec = *s.mpm;
-  if (auto v = t.optional_string("shape_function")) spec.shape = mpm::parse_shape_function(*v, t.file(), t.path("shape_function"));
-  if (auto v = t.optional_string("gimp_domain")) spec.gimp_domain = mpm::parse_gimp_domain(*v, t.file(), t.path("gimp_domain"));
-  if (auto v = t.optional_string("update_scheme")) spec.scheme = mpm::parse_update_scheme(*v, t.file(), t.path("update_scheme"));
+  if (auto v = t.optional_enum<mpm::ShapeFunction>("shape_function")) spec.shape = *v;
+  if (auto v = t.optional_enum<mpm::GimpDomain>("gimp_domain")) spec.gimp_domain = *v;
+  if (auto v = t.optional_enum<mpm::UpdateScheme>("update_scheme")) spec.scheme = *v;
   if (auto v = t.optional_number("flip")) spec.flip = t.in_range("flip", *v, 0.0, 1.0, false, false);
   if (auto v = t.optional_number("cell_size")) spec.cell_size = t.positive("cell_size", *v);
   if (auto v = t.optional_number("cell_factor")) spec.cell_factor = t.in_range("cell_factor", *v, 1.0, 16.0, false, false);

@@ -59,15 +59,15 @@ void check_expression(const TomlReader& r, const std::string& key, const std::st
   }
 }
 
-pd::Setting read_setting(const TomlReader& d, int dim) {
-  if (dim == 1) return pd::Setting::bar1d;
+core::Setting read_setting(const TomlReader& d, int dim) {
+  if (dim == 1) return core::Setting::bar1d;
   if (dim == 3) {
     if (d.has("plane")) d.fail("plane", "only for dimension = 2");
-    return pd::Setting::solid3d;
+    return core::Setting::solid3d;
   }
   const std::string plane = d.string("plane");
-  if (plane == "stress") return pd::Setting::plane_stress;
-  if (plane == "strain") return pd::Setting::plane_strain;
+  if (plane == "stress") return core::Setting::plane_stress;
+  if (plane == "strain") return core::Setting::plane_strain;
   d.fail("plane", "must be \"stress\" or \"strain\", got \"" + plane + "\"");
 }
 
@@ -98,11 +98,7 @@ void read_discretization(const TomlReader& d, Scene& s) {
     if (d.has("thickness")) d.fail("thickness", "only for dimension = 2");
     if (d.has("area")) d.fail("area", "only for dimension = 1");
   }
-  if (auto pv = d.optional_string("partial_volume")) {
-    auto p = pd::parse_partial_volume(*pv);
-    if (!p) d.fail("partial_volume", "must be one of none, seed001, extended; got \"" + *pv + "\"");
-    s.partial_volume = *p;
-  }
+  if (auto pv = d.optional_enum<pd::PartialVolume>("partial_volume")) s.partial_volume = *pv;
   s.lattice_origin = d.optional_numbers("lattice_origin", s.dimension);
   d.finish();
 }
@@ -137,9 +133,9 @@ void read_material(const TomlReader& m, Scene& s) {
   if (lo == hi) {
     // The model fixes ν; a given value must agree with it.
     if (nu && std::abs(*nu - lo) > 1e-9)
-      m.fail("poissons_ratio", "the " + s.model + " model in " + std::string(pd::name(s.setting)) + " has ν = " + fixed.str() + " only; got " + std::to_string(*nu));
+      m.fail("poissons_ratio", "the " + s.model + " model in " + std::string(name(s.setting)) + " has ν = " + fixed.str() + " only; got " + std::to_string(*nu));
     s.material.nu = lo;
-  } else if (s.setting == pd::Setting::bar1d) {
+  } else if (s.setting == core::Setting::bar1d) {
     s.material.nu = nu.value_or(0.25);
   } else {
     if (!nu) m.fail("poissons_ratio", "missing (required for the " + s.model + " model)");
@@ -164,10 +160,7 @@ void read_material(const TomlReader& m, Scene& s) {
 }
 
 void read_time(const TomlReader& t, Scene& s) {
-  const std::string integ = t.optional_string("integrator").value_or("verlet");
-  if (integ == "verlet") s.time.integrator = Integrator::verlet;
-  else if (integ == "adr") s.time.integrator = Integrator::adr;
-  else t.fail("integrator", "must be \"verlet\" (dynamic) or \"adr\" (adaptive dynamic relaxation, quasi-static); got \"" + integ + "\"");
+  s.time.integrator = t.optional_enum<Integrator>("integrator").value_or(Integrator::verlet);
   if (s.method == Method::mpm) {
     // MPM is explicit with its own grid-based stable step ([mpm] damping for quasi-static runs).
     if (s.time.integrator != Integrator::verlet) t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
@@ -188,11 +181,7 @@ void read_time(const TomlReader& t, Scene& s) {
   if (s.time.dt) t.positive("dt", *s.time.dt);
   if (auto f = t.optional_number("safety_factor")) s.time.safety_factor = t.in_range("safety_factor", *f, 0.0, 2.0, true, false);
   if (s.time.dt && t.has("safety_factor")) t.fail("safety_factor", "give either dt or safety_factor, not both");
-  if (auto e = t.optional_string("stable_step")) {
-    if (*e == "silling_askari") s.time.estimate = StableStepEstimate::silling_askari;
-    else if (*e == "lanczos") s.time.estimate = StableStepEstimate::lanczos;
-    else t.fail("stable_step", "must be \"silling_askari\" or \"lanczos\"; got \"" + *e + "\"");
-  }
+  if (auto e = t.optional_enum<StableStepEstimate>("stable_step")) s.time.estimate = *e;
   if (auto v = t.optional_number("tolerance")) s.time.tolerance = t.in_range("tolerance", *v, 0.0, 1.0, true, true);
   if (auto v = t.optional_integer("max_steps")) {
     if (*v <= 0) t.fail("max_steps", "must be ≥ 1");
@@ -216,12 +205,7 @@ void read_boundaries(const TomlReader& root, Scene& s) {
     spec.name = b.optional_string("name").value_or("boundary" + std::to_string(k));
     if (!std::regex_match(spec.name, std::regex("[A-Za-z0-9_]+"))) b.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
     const std::string kind = b.string("kind");
-    if (kind == "fixed") spec.kind = BoundaryKind::fixed;
-    else if (kind == "displacement") spec.kind = BoundaryKind::displacement;
-    else if (kind == "velocity") spec.kind = BoundaryKind::velocity;
-    else if (kind == "traction") spec.kind = BoundaryKind::traction;
-    else if (kind == "analytic") spec.kind = BoundaryKind::analytic;
-    else b.fail("kind", "must be one of fixed, displacement, velocity, traction, analytic; got \"" + kind + "\"");
+    spec.kind = parse_enum<BoundaryKind>(kind, b.file(), b.path("kind"));
     for (const auto& shape : b.table_or_tables("region")) spec.region.push_back(read_shape(shape, s.dimension));
     const auto value = b.optional_expressions("value", s.dimension);
     const bool needs_value = spec.kind == BoundaryKind::displacement || spec.kind == BoundaryKind::velocity ||

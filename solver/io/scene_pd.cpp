@@ -9,27 +9,17 @@
 namespace pdmpm::io {
 
 void read_pd_model(const TomlReader& m, Scene& s) {
-  if (auto w = m.optional_string("influence")) {
-    auto inf = pd::parse_influence(*w);
-    if (!inf) m.fail("influence", "must be one of " + pd::influence_names() + "; got \"" + *w + "\"");
-    s.influence = *inf;
-  }
+  if (auto w = m.optional_enum<pd::Influence>("influence")) s.influence = *w;
   s.damage = m.boolean("damage", true);
-  if (auto bt = m.optional_string("break_timing")) {
-    if (*bt != "before_force" && *bt != "after_force")
-      m.fail("break_timing", "must be \"before_force\" (default: a bond at s ≥ s₀ breaks before it acts) or \"after_force\" (it acts once more and breaks if s > s₀, as in LAMMPS); got \"" + *bt + "\"");
-    s.break_after_force = *bt == "after_force";
-  }
-  if (auto wv = m.optional_string("weighted_volume")) {
+  if (auto bt = m.optional_enum<BreakTiming>("break_timing")) s.break_after_force = *bt == BreakTiming::after_force;
+  if (auto wv = m.optional_enum<WeightedVolume>("weighted_volume")) {
     if (!pd::model_info(s.model).state_based) {
       std::string state_based;
       for (const auto& info : pd::model_table())
         if (info.state_based) state_based += (state_based.empty() ? "\"" : " or \"") + info.name + "\"";
       m.fail("weighted_volume", "only for type = " + state_based);
     }
-    if (*wv != "discrete" && *wv != "continuum")
-      m.fail("weighted_volume", "must be \"discrete\" (default: the sum over each family) or \"continuum\" (the integral over a full horizon, Gu & Zhou 2017 eq 15); got \"" + *wv + "\"");
-    s.continuum_weighted_volume = *wv == "continuum";
+    s.continuum_weighted_volume = *wv == WeightedVolume::continuum;
   }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solver/core/error.hpp"
+#include "solver/core/named_enum.hpp"
 
 namespace pdmpm::io {
 
@@ -30,6 +31,14 @@ class TomlReader {
   bool boolean(const std::string& key, bool fallback) const;
   std::string string(const std::string& key) const;
   std::optional<std::string> optional_string(const std::string& key) const;
+  // A string naming a value of a NamedEnum; any other string fails listing the allowed names.
+  template <NamedEnum E>
+  std::optional<E> optional_enum(const std::string& key) const {
+    const auto text = optional_string(key);
+    if (!text) return std::nullopt;
+    if (auto e = find_enum<E>(*text)) return e;
+    fail(key, "must be one of " + enum_names<E>() + "; got \"" + *text + "\"");
+  }
   // A list of exactly `n` numbers (n = 0: any length ≥ 1).
   std::vector<double> numbers(const std::string& key, std::size_t n) const;
   std::optional<std::vector<double>> optional_numbers(const std::string& key, std::size_t n) const;

@@ -27,7 +27,7 @@ template <int D>
 StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, double hardening_offset) const {
   StressResult r;
   if (m_.model == MaterialModel::neo_hookean) {
-    r.kirchhoff = neo_hookean_kirchhoff(m_, embed_deformation<D>(F), r.J, r.energy);
+    r.kirchhoff = neo_hookean_kirchhoff(m_.elastic, embed_deformation<D>(F), r.J, r.energy);
     return r;
   }
 
@@ -38,19 +38,19 @@ StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, dou
   double out_of_plane = 0.0;  // plane stress ε₃₃ or bar lateral strain
   if (m_.model == MaterialModel::linear_elastic) {
     switch (setting_) {
-      case Setting::plane_stress: T = hooke_plane_stress(m_, eps, out_of_plane); break;
-      case Setting::bar1d: T = hooke_bar(m_, eps, out_of_plane); break;
-      default: T = hooke_3d(m_, eps); break;
+      case core::Setting::plane_stress: T = hooke_plane_stress(m_.elastic, eps, out_of_plane); break;
+      case core::Setting::bar1d: T = hooke_bar(m_.elastic, eps, out_of_plane); break;
+      default: T = hooke_3d(m_.elastic, eps); break;
     }
-    r.energy = setting_ == Setting::plane_stress
+    r.energy = setting_ == core::Setting::plane_stress
                    ? 0.5 * (T(0, 0) * eps(0, 0) + T(1, 1) * eps(1, 1) + 2.0 * T(0, 1) * eps(0, 1))
                    : elastic_energy(T, eps);
   } else {
     J2Result j;
     switch (setting_) {
-      case Setting::plane_stress: j = j2_return_plane_stress(m_, eps, history, hardening_offset); break;
-      case Setting::bar1d: j = j2_return_bar(m_, eps, history, hardening_offset); break;
-      default: j = j2_return_3d(m_, eps, history, hardening_offset); break;
+      case core::Setting::plane_stress: j = j2_return_plane_stress(m_.elastic, m_.j2, eps, history, hardening_offset); break;
+      case core::Setting::bar1d: j = j2_return_bar(m_.elastic, m_.j2, eps, history, hardening_offset); break;
+      default: j = j2_return_3d(m_.elastic, m_.j2, eps, history, hardening_offset); break;
     }
     T = j.T;
     out_of_plane = j.out_of_plane;
@@ -59,8 +59,8 @@ StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, dou
   }
   // Volume ratio from the log strain: J = exp(tr ε) with the setting's out-of-plane part.
   double trace = eps.trace();
-  if (setting_ == Setting::plane_stress) trace += out_of_plane;
-  if (setting_ == Setting::bar1d) trace += 2.0 * out_of_plane;
+  if (setting_ == core::Setting::plane_stress) trace += out_of_plane;
+  if (setting_ == core::Setting::bar1d) trace += 2.0 * out_of_plane;
   r.J = std::exp(trace);
   r.out_of_plane_strain = out_of_plane;
   const Mat<3> R = embed_deformation<D>(pl.R);

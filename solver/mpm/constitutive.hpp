@@ -12,17 +12,17 @@ namespace pdmpm::mpm {
 template <int D>
 class Constitutive {
  public:
-  Constitutive(const Material& material, Setting setting) : m_(material), setting_(setting) {}
+  Constitutive(const Material& material, core::Setting setting) : m_(material), setting_(setting) {}
 
   // hardening_offset: ε̂_p − ε̄_p used by J2 hardening (non-local correction; 0 = local).
   StressResult update(const Mat<D>& F, PointHistory& history, double hardening_offset = 0.0) const;
 
   const Material& material() const { return m_; }
-  Setting setting() const { return setting_; }
+  core::Setting setting() const { return setting_; }
 
  private:
   Material m_;
-  Setting setting_;
+  core::Setting setting_;
 };
 
 // 3×3 embedding of a D×D tensor (zeros elsewhere) and of a deformation gradient

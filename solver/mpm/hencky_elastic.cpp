@@ -2,11 +2,11 @@
 
 namespace pdmpm::mpm {
 
-Mat<3> hooke_3d(const Material& m, const Mat<3>& eps) {
+Mat<3> hooke_3d(const core::Elastic& m, const Mat<3>& eps) {
   return m.lame() * eps.trace() * Mat<3>::Identity() + 2.0 * m.shear() * eps;
 }
 
-Mat<3> hooke_plane_stress(const Material& m, const Mat<3>& eps, double& eps33) {
+Mat<3> hooke_plane_stress(const core::Elastic& m, const Mat<3>& eps, double& eps33) {
   const double c = m.E / (1.0 - m.nu * m.nu);
   const double tr = eps(0, 0) + eps(1, 1);
   Mat<3> T = Mat<3>::Zero();
@@ -17,7 +17,7 @@ Mat<3> hooke_plane_stress(const Material& m, const Mat<3>& eps, double& eps33) {
   return T;
 }
 
-Mat<3> hooke_bar(const Material& m, const Mat<3>& eps, double& lateral) {
+Mat<3> hooke_bar(const core::Elastic& m, const Mat<3>& eps, double& lateral) {
   Mat<3> T = Mat<3>::Zero();
   T(0, 0) = m.E * eps(0, 0);
   lateral = -m.nu * eps(0, 0);

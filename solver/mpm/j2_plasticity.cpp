@@ -11,14 +11,14 @@ const double kSqrt2over3 = std::sqrt(2.0 / 3.0);
 const double kSqrt3over2 = std::sqrt(1.5);
 }  // namespace
 
-J2Result j2_return_3d(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
-  const double G = m.shear(), H = m.hardening_modulus();
+J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = m.shear(), H = j2.hardening_modulus(m.E);
   const Mat<3> eps_e_trial = eps - h.plastic_strain;
   const Mat<3> T_trial = hooke_3d(m, eps_e_trial);
   const Mat<3> s = T_trial - (T_trial.trace() / 3.0) * Mat<3>::Identity();
   const double s_norm = s.norm();
   const double q = kSqrt3over2 * s_norm;  // von Mises equivalent of the trial stress
-  const double kappa = m.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
+  const double kappa = j2.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
   J2Result r;
   if (q <= kappa) {
     r.T = T_trial;
@@ -38,8 +38,8 @@ J2Result j2_return_3d(const Material& m, const Mat<3>& eps, PointHistory& h, dou
   return r;
 }
 
-J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
-  const double G = m.shear(), H = m.hardening_modulus(), E = m.E, nu = m.nu;
+J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = m.shear(), H = j2.hardening_modulus(m.E), E = m.E, nu = m.nu;
   Mat<3> eps_e = eps - h.plastic_strain;
   double e33_el = 0.0;
   const Mat<3> T_trial = hooke_plane_stress(m, eps_e, e33_el);
@@ -62,7 +62,7 @@ J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHisto
   };
   auto f = [&](double dg, double& df) {
     const double p2 = phi2(dg), p = std::sqrt(p2);
-    const double kappa = m.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
+    const double kappa = j2.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
     const double dp = p > 0.0 ? 0.5 * dphi2(dg) / p : 0.0;
     const double dkappa = H * kSqrt2over3 * (p + dg * dp);
     df = 0.5 * dphi2(dg) - (2.0 / 3.0) * kappa * dkappa;
@@ -86,7 +86,7 @@ J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHisto
     if (hi > 1e12 / c2) throw RunError("plane-stress return map: no bracket for the consistency parameter");
   }
   double dg = 0.5 * (lo + hi);
-  const double scale = m.yield_stress * m.yield_stress;
+  const double scale = j2.yield_stress * j2.yield_stress;
   for (int it = 0; it < 200; ++it) {
     const double fv = f(dg, df);
     if (fv > 0.0) lo = dg; else hi = dg;
@@ -119,11 +119,11 @@ J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHisto
   return r;
 }
 
-J2Result j2_return_bar(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
-  const double E = m.E, H = m.hardening_modulus();
+J2Result j2_return_bar(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double E = m.E, H = j2.hardening_modulus(m.E);
   const double ep = h.plastic_strain(0, 0);
   const double T_trial = E * (eps(0, 0) - ep);
-  const double kappa = m.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
+  const double kappa = j2.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
   J2Result r;
   double T = T_trial;
   if (std::abs(T_trial) > kappa) {

@@ -7,7 +7,7 @@
 #include "solver/core/types.hpp"
 #include "solver/mpm/hencky_elastic.hpp"
 #include "solver/mpm/material_point.hpp"
-#include "solver/mpm/settings.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::mpm {
 
@@ -20,14 +20,14 @@ struct J2Result {
 };
 
 // solid3d, plane_strain, uniaxial_strain: radial return (Simo & Hughes 1998, box 3.1).
-J2Result j2_return_3d(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
 
 // Plane stress (σ₃₃ = σ₁₃ = σ₂₃ = 0): the plane-stress projected return map of
 // Simo & Taylor (1986) / Simo & Hughes (1998) §3.4, solved for the consistency
 // parameter by safeguarded Newton in the spectral basis of the projection P.
-J2Result j2_return_plane_stress(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
 
 // Bar (uniaxial stress): 1D return map.
-J2Result j2_return_bar(const Material& m, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_bar(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
 
 }  // namespace pdmpm::mpm

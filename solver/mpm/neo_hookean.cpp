@@ -6,7 +6,7 @@
 
 namespace pdmpm::mpm {
 
-Mat<3> neo_hookean_kirchhoff(const Material& m, const Mat<3>& F3, double& J, double& energy) {
+Mat<3> neo_hookean_kirchhoff(const core::Elastic& m, const Mat<3>& F3, double& J, double& energy) {
   J = F3.determinant();
   if (!(J > 0.0)) throw RunError("neo-Hookean: det F ≤ 0 (particle inverted)");
   const double mu = m.shear(), lambda = m.lame();

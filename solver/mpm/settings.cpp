@@ -10,16 +10,6 @@ namespace pdmpm::mpm {
 
 namespace {
 
-template <class Enum, std::size_t N>
-Enum parse_enum(std::string_view v, const std::array<Enum, N>& all, const std::string& file, const std::string& key) {
-  std::string allowed;
-  for (Enum e : all) {
-    if (name(e) == v) return e;
-    allowed += (allowed.empty() ? "" : ", ") + std::string(name(e));
-  }
-  throw InputError(file, key, fmt::format("unknown value '{}'; allowed: {}", v, allowed));
-}
-
 // Collects the file and key prefix so each check is one line.
 struct Checker {
   const std::string& file;
@@ -56,111 +46,6 @@ std::string vec_str(const Vec<D>& v) {
 
 }  // namespace
 
-int dimension(Setting s) {
-  switch (s) {
-    case Setting::bar1d:
-    case Setting::uniaxial_strain: return 1;
-    case Setting::plane_stress:
-    case Setting::plane_strain: return 2;
-    case Setting::solid3d: return 3;
-  }
-  return 0;
-}
-
-double Material::wave_modulus(Setting s) const {
-  switch (s) {
-    case Setting::bar1d: return E;
-    case Setting::plane_stress: return E / (1.0 - nu * nu);
-    case Setting::uniaxial_strain:
-    case Setting::plane_strain:
-    case Setting::solid3d: return lame() + 2.0 * shear();
-  }
-  return E;
-}
-
-std::string_view name(Setting s) {
-  switch (s) {
-    case Setting::bar1d: return "bar";
-    case Setting::uniaxial_strain: return "uniaxial_strain";
-    case Setting::plane_stress: return "plane_stress";
-    case Setting::plane_strain: return "plane_strain";
-    case Setting::solid3d: return "3d";
-  }
-  return "?";
-}
-std::string_view name(ShapeFunction s) {
-  switch (s) {
-    case ShapeFunction::linear: return "linear";
-    case ShapeFunction::gimp: return "gimp";
-    case ShapeFunction::bspline2: return "bspline2";
-  }
-  return "?";
-}
-std::string_view name(GimpDomain g) {
-  switch (g) {
-    case GimpDomain::fixed: return "fixed";
-    case GimpDomain::stretch: return "stretch";
-  }
-  return "?";
-}
-std::string_view name(UpdateScheme s) {
-  switch (s) {
-    case UpdateScheme::usf: return "usf";
-    case UpdateScheme::usl: return "usl";
-    case UpdateScheme::musl: return "musl";
-  }
-  return "?";
-}
-std::string_view name(MaterialModel m) {
-  switch (m) {
-    case MaterialModel::linear_elastic: return "linear_elastic";
-    case MaterialModel::neo_hookean: return "neo_hookean";
-    case MaterialModel::j2: return "j2";
-  }
-  return "?";
-}
-std::string_view name(BcKind k) {
-  switch (k) {
-    case BcKind::fixed: return "fixed";
-    case BcKind::roller: return "roller";
-    case BcKind::velocity: return "velocity";
-    case BcKind::symmetry: return "symmetry";
-  }
-  return "?";
-}
-std::string_view name(FailureRule r) {
-  switch (r) {
-    case FailureRule::strain: return "strain";
-    case FailureRule::accumulated: return "accumulated";
-  }
-  return "?";
-}
-
-Setting parse_setting(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{Setting::bar1d, Setting::uniaxial_strain, Setting::plane_stress, Setting::plane_strain,
-                                  Setting::solid3d},
-                    file, key);
-}
-ShapeFunction parse_shape_function(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{ShapeFunction::linear, ShapeFunction::gimp, ShapeFunction::bspline2}, file, key);
-}
-GimpDomain parse_gimp_domain(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{GimpDomain::fixed, GimpDomain::stretch}, file, key);
-}
-UpdateScheme parse_update_scheme(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{UpdateScheme::usf, UpdateScheme::usl, UpdateScheme::musl}, file, key);
-}
-MaterialModel parse_material_model(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{MaterialModel::linear_elastic, MaterialModel::neo_hookean, MaterialModel::j2}, file,
-                    key);
-}
-BcKind parse_bc_kind(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{BcKind::fixed, BcKind::roller, BcKind::velocity, BcKind::symmetry}, file, key);
-}
-FailureRule parse_failure_rule(std::string_view v, const std::string& file, const std::string& key) {
-  return parse_enum(v, std::array{FailureRule::strain, FailureRule::accumulated}, file, key);
-}
-
 template <int D>
 void validate(const Settings<D>& s, double particle_spacing, const std::string& file, const std::string& prefix) {
   const Checker c{file, prefix};
@@ -194,15 +79,15 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
 
   // Material.
   const Material& m = s.material;
-  c.positive("material.E", m.E);
-  c.range("material.nu", m.nu, -1.0, 0.5, true, true);
-  c.positive("material.rho", m.rho);
+  c.positive("material.E", m.elastic.E);
+  c.range("material.nu", m.elastic.nu, -1.0, 0.5, true, true);
+  c.positive("material.rho", m.elastic.rho);
   if (m.model == MaterialModel::j2) {
-    c.positive("material.yield_stress", m.yield_stress);
-    c.range("material.tangent_modulus", m.tangent_modulus, 0.0, m.E, false, true);
+    c.positive("material.yield_stress", m.j2.yield_stress);
+    c.range("material.tangent_modulus", m.j2.tangent_modulus, 0.0, m.elastic.E, false, true);
   }
   if (m.model == MaterialModel::neo_hookean &&
-      (s.setting == Setting::plane_stress || s.setting == Setting::bar1d))
+      (s.setting == core::Setting::plane_stress || s.setting == core::Setting::bar1d))
     c.fail("material.model", fmt::format("neo_hookean is implemented for 3d, plane_strain and uniaxial_strain, not '{}'",
                                          name(s.setting)));
   if (s.nonlocal.enabled) {

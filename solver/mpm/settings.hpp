@@ -11,34 +11,44 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/core/material.hpp"
 #include "solver/core/types.hpp"
 
 namespace pdmpm::mpm {
-
-// Kinematic setting of the body. 1D: a bar under uniaxial stress (lateral faces
-// free) or uniaxial strain (laterally confined); 2D: plane stress (thin plate,
-// thickness in the particle volume) or plane strain; 3D solid.
-enum class Setting { bar1d, uniaxial_strain, plane_stress, plane_strain, solid3d };
 
 // Grid interpolation. linear: classic MPM tent functions (Sulsky et al. 1994);
 // gimp: uGIMP, particle domains of fixed half-width Δx/2 (Bardenhagen & Kober 2004);
 // bspline2: quadratic B-splines (Steffen, Kirby & Berzins 2008).
 enum class ShapeFunction { linear, gimp, bspline2 };
+constexpr std::array<EnumName<ShapeFunction>, 3> names(ShapeFunction) {
+  return {{{ShapeFunction::linear, "linear"}, {ShapeFunction::gimp, "gimp"}, {ShapeFunction::bspline2, "bspline2"}}};
+}
 
 // GIMP particle domains: fixed half-widths Δx/2 (uGIMP), or stretched with the
 // deformation, lp_a = (Δx/2)·|F_aa| capped at h/2 (cpGIMP; Wallstedt & Guilkey 2008
 // show GIMP is most accurate when the domains stay contiguous).
 enum class GimpDomain { fixed, stretch };
+constexpr std::array<EnumName<GimpDomain>, 2> names(GimpDomain) {
+  return {{{GimpDomain::fixed, "fixed"}, {GimpDomain::stretch, "stretch"}}};
+}
 
 // Update-stress-first, update-stress-last, modified USL (Bardenhagen 2002;
 // Wallstedt & Guilkey 2008 describe all three).
 enum class UpdateScheme { usf, usl, musl };
+constexpr std::array<EnumName<UpdateScheme>, 3> names(UpdateScheme) {
+  return {{{UpdateScheme::usf, "usf"}, {UpdateScheme::usl, "usl"}, {UpdateScheme::musl, "musl"}}};
+}
 
 // linear_elastic: Hooke's law between the Lagrangian logarithmic strain ln U and the
 // rotated Kirchhoff stress (= small-strain elasticity to first order, objective at any
 // rotation); neo_hookean: compressible neo-Hookean σ = μ/J (B − I) + λ ln J / J I;
 // j2: von Mises plasticity with linear isotropic hardening on the same log strain.
 enum class MaterialModel { linear_elastic, neo_hookean, j2 };
+constexpr std::array<EnumName<MaterialModel>, 3> names(MaterialModel) {
+  return {{{MaterialModel::linear_elastic, "linear_elastic"},
+           {MaterialModel::neo_hookean, "neo_hookean"},
+           {MaterialModel::j2, "j2"}}};
+}
 
 enum class BcKind {
   fixed,     // all velocity components zero on the region's nodes
@@ -46,28 +56,15 @@ enum class BcKind {
   velocity,  // prescribed components (mask) = velocity · ramp(t)
   symmetry,  // mirror plane on a grid line: nodes beyond it mirror those inside
 };
+constexpr std::array<EnumName<BcKind>, 4> names(BcKind) {
+  return {{{BcKind::fixed, "fixed"}, {BcKind::roller, "roller"}, {BcKind::velocity, "velocity"}, {BcKind::symmetry, "symmetry"}}};
+}
 
-// Failure rule of the ductile criterion ε_f = d₀ exp(c η) (docs/models/planned.md, Noorian et al. eqs 8–9).
-// strain: fail when ε̄_p ≥ ε_f(η) at the current η (the reading docs/choices.md takes);
-// accumulated: fail when ∫ dε̄_p / ε_f(η) ≥ 1 (path-dependent variant).
-enum class FailureRule { strain, accumulated };
-
+// The material of an MPM body: its constitutive law, elastic constants and (j2) hardening.
 struct Material {
   MaterialModel model = MaterialModel::linear_elastic;  // key "material.model"
-  double E = 0.0;      // "material.E" Young's modulus (Pa), > 0
-  double nu = 0.0;     // "material.nu" Poisson's ratio, (−1, 0.5)
-  double rho = 0.0;    // "material.rho" reference density (kg/m³), > 0
-  // j2 only
-  double yield_stress = 0.0;      // "material.yield_stress" σ_y (Pa), > 0
-  double tangent_modulus = 0.0;   // "material.tangent_modulus" E_t (Pa), 0 ≤ E_t < E
-
-  double shear() const { return E / (2.0 * (1.0 + nu)); }
-  double lame() const { return E * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)); }
-  double bulk() const { return E / (3.0 * (1.0 - 2.0 * nu)); }
-  // Plastic (hardening) modulus of the uniaxial bilinear curve: H = E·E_t / (E − E_t).
-  double hardening_modulus() const { return E * tangent_modulus / (E - tangent_modulus); }
-  // ρ c² of the fastest elastic wave in the setting (for the stable step).
-  double wave_modulus(Setting s) const;
+  core::Elastic elastic;    // "material.E", "material.nu" (−1, 0.5), "material.rho" (all > 0 but ν)
+  core::J2Hardening j2;     // j2 only: "material.yield_stress" > 0, "material.tangent_modulus" [0, E)
 };
 
 // Non-local equivalent plastic strain (after Burghardt, Brannon & Guilkey 2012):
@@ -77,13 +74,6 @@ struct Nonlocal {
   bool enabled = false;   // "nonlocal.enabled"
   double length = 0.0;    // "nonlocal.length" ℓ (m), > 0 when enabled
   double m = 1.0;         // "nonlocal.m" over-nonlocal weight, [0, 4]
-};
-
-struct Failure {
-  bool enabled = false;          // "failure.enabled"
-  double d0 = 0.0;               // "failure.d0" > 0
-  double c = 0.0;                // "failure.c" (finite; usually < 0)
-  FailureRule rule = FailureRule::strain;  // "failure.rule"
 };
 
 template <int D>
@@ -122,7 +112,7 @@ struct Traction {
 
 template <int D>
 struct Settings {
-  Setting setting = D == 1 ? Setting::bar1d : D == 2 ? Setting::plane_stress : Setting::solid3d;  // "setting"
+  core::Setting setting = D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_stress : core::Setting::solid3d;  // "setting"
 
   // Background grid. Grid lines pass through `origin`; cell size is `cell_size` if > 0,
   // else cell_factor × particle spacing (Noorian et al.: 2Δx). The node box is [domain_min,
@@ -140,7 +130,7 @@ struct Settings {
 
   Material material;              // "material.*"
   Nonlocal nonlocal;              // "nonlocal.*"
-  Failure failure;                // "failure.*"
+  core::DuctileFailure failure;   // "failure.*"
 
   std::vector<GridBc<D>> boundaries;   // "boundary[i]"
   std::vector<Traction<D>> tractions;  // "traction[i]"
@@ -160,24 +150,5 @@ struct Settings {
 template <int D>
 void validate(const Settings<D>& s, double particle_spacing, const std::string& file = "",
               const std::string& prefix = "mpm");
-
-// Names ↔ enums for scene parsing; unknown names throw InputError listing the allowed ones.
-std::string_view name(Setting s);
-std::string_view name(ShapeFunction s);
-std::string_view name(GimpDomain g);
-std::string_view name(UpdateScheme s);
-std::string_view name(MaterialModel m);
-std::string_view name(BcKind k);
-std::string_view name(FailureRule r);
-Setting parse_setting(std::string_view v, const std::string& file, const std::string& key);
-ShapeFunction parse_shape_function(std::string_view v, const std::string& file, const std::string& key);
-GimpDomain parse_gimp_domain(std::string_view v, const std::string& file, const std::string& key);
-UpdateScheme parse_update_scheme(std::string_view v, const std::string& file, const std::string& key);
-MaterialModel parse_material_model(std::string_view v, const std::string& file, const std::string& key);
-BcKind parse_bc_kind(std::string_view v, const std::string& file, const std::string& key);
-FailureRule parse_failure_rule(std::string_view v, const std::string& file, const std::string& key);
-
-// Spatial dimension a setting belongs to.
-int dimension(Setting s);
 
 }  // namespace pdmpm::mpm

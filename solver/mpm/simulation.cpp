@@ -105,7 +105,7 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
 template <int D>
 void Simulation<D>::initialise_particle(Index p) {
   const double dx = particles_.lattice.spacing;
-  state_.mass[p] = settings_.material.rho * particles_.volume[p];
+  state_.mass[p] = settings_.material.elastic.rho * particles_.volume[p];
   state_.half_width[p] = Vec<D>::Constant(0.5 * dx);
   state_.F[p].setIdentity();
   state_.kirchhoff[p].setZero();
@@ -256,7 +256,7 @@ template <int D>
 void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   const Index na = static_cast<Index>(active_.size());
   const IVec<D> stride = grid_.stride;
-  const Failure& fail = settings_.failure;
+  const core::DuctileFailure& fail = settings_.failure;
   const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
   const double lp0 = 0.5 * particles_.lattice.spacing;
   Index bad = std::numeric_limits<Index>::max();
@@ -297,7 +297,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
       const double eta = mpm::triaxiality(state_.stress[p]);
       const double eps_f = fracture_strain(fail.d0, fail.c, eta);
       bool broke = false;
-      if (fail.rule == FailureRule::strain) {
+      if (fail.rule == core::FailureRule::strain) {
         broke = hist.eq_plastic_strain + offset >= eps_f;
       } else {
         state_.damage[p] += (hist.eq_plastic_strain - alpha_before) / eps_f;
@@ -320,7 +320,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 
 template <int D>
 double Simulation<D>::stable_dt() const {
-  const Material& m = settings_.material;
+  const core::Elastic& m = settings_.material.elastic;
   const double M = m.wave_modulus(settings_.setting);
   double vmax = 0.0;
   const Index na = static_cast<Index>(active_.size());
@@ -328,7 +328,7 @@ double Simulation<D>::stable_dt() const {
   for (Index k = 0; k < na; ++k) {
     const Index p = active_[k];
     double modulus = M;
-    if (m.model == MaterialModel::neo_hookean) {
+    if (settings_.material.model == MaterialModel::neo_hookean) {
       // The neo-Hookean tangent stiffens with stretch: λ + 2μ λ_max(B), λ_max ≤ ‖B‖_∞.
       const Mat<3> F3 = embed_deformation<D>(state_.F[p]);
       const Mat<3> B = F3 * F3.transpose();

@@ -43,49 +43,49 @@ double influence_moment(Influence w, int n, double delta) {
   return unit * std::pow(delta, k);
 }
 
-double pmb_micromodulus(Influence w, Setting s, const Elastic& m, double delta, double measure) {
+double pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, double delta, double measure) {
   switch (s) {
-    case Setting::bar1d: return m.E / (measure * influence_moment(w, 1, delta));
-    case Setting::plane_stress: return 2.0 * m.E / ((1.0 - m.nu) * pi * measure * influence_moment(w, 2, delta));
-    case Setting::plane_strain:
+    case core::Setting::bar1d: return m.E / (measure * influence_moment(w, 1, delta));
+    case core::Setting::plane_stress: return 2.0 * m.E / ((1.0 - m.nu) * pi * measure * influence_moment(w, 2, delta));
+    case core::Setting::plane_strain:
       return 2.0 * m.E / ((1.0 + m.nu) * (1.0 - 2.0 * m.nu) * pi * measure * influence_moment(w, 2, delta));
-    case Setting::solid3d: return 3.0 * m.E / (2.0 * pi * (1.0 - 2.0 * m.nu) * influence_moment(w, 3, delta));
+    case core::Setting::solid3d: return 3.0 * m.E / (2.0 * pi * (1.0 - 2.0 * m.nu) * influence_moment(w, 3, delta));
   }
   return 0.0;
 }
 
-double lps_weighted_volume(Influence w, Setting s, double delta, double measure) {
+double lps_weighted_volume(Influence w, core::Setting s, double delta, double measure) {
   switch (s) {
-    case Setting::bar1d: return 2.0 * measure * influence_moment(w, 2, delta);
-    case Setting::plane_stress:
-    case Setting::plane_strain: return 2.0 * pi * measure * influence_moment(w, 3, delta);
-    case Setting::solid3d: return 4.0 * pi * influence_moment(w, 4, delta);
+    case core::Setting::bar1d: return 2.0 * measure * influence_moment(w, 2, delta);
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain: return 2.0 * pi * measure * influence_moment(w, 3, delta);
+    case core::Setting::solid3d: return 4.0 * pi * influence_moment(w, 4, delta);
   }
   return 0.0;
 }
 
-double critical_stretch(Influence w, Setting s, const Elastic& m, double fracture_energy, double delta,
+double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, double fracture_energy, double delta,
                         double measure) {
   const double c = pmb_micromodulus(w, s, m, delta, measure);
   switch (s) {
-    case Setting::bar1d: return std::sqrt(2.0 * fracture_energy / (c * measure * influence_moment(w, 2, delta)));
-    case Setting::plane_stress:
-    case Setting::plane_strain: return std::sqrt(fracture_energy / (c * measure * influence_moment(w, 3, delta)));
-    case Setting::solid3d: return std::sqrt(2.0 * fracture_energy / (pi * c * influence_moment(w, 4, delta)));
+    case core::Setting::bar1d: return std::sqrt(2.0 * fracture_energy / (c * measure * influence_moment(w, 2, delta)));
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain: return std::sqrt(fracture_energy / (c * measure * influence_moment(w, 3, delta)));
+    case core::Setting::solid3d: return std::sqrt(2.0 * fracture_energy / (pi * c * influence_moment(w, 4, delta)));
   }
   return 0.0;
 }
 
-LpsCoefficients lps_coefficients(Setting s, const Elastic& m) {
+LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
   const double G = m.shear();
   switch (s) {
-    case Setting::bar1d: return {0.0, m.E, 0.0, 0.0, 1};
-    case Setting::plane_stress:
-    case Setting::plane_strain: {
+    case core::Setting::bar1d: return {0.0, m.E, 0.0, 0.0, 1};
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain: {
       const double k2 = m.bulk_2d(s);
       return {2.0 * (k2 - 2.0 * G), 8.0 * G, k2, 0.5, 2};
     }
-    case Setting::solid3d: {
+    case core::Setting::solid3d: {
       const double K = m.bulk();
       return {3.0 * K - 5.0 * G, 15.0 * G, K, 1.0 / 3.0, 3};
     }
@@ -93,17 +93,17 @@ LpsCoefficients lps_coefficients(Setting s, const Elastic& m) {
   return {};
 }
 
-MadenciOterkus madenci_oterkus(Setting s, const Elastic& m, double delta, double measure) {
+MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double delta, double measure) {
   const double mu = m.shear();
   switch (s) {
-    case Setting::bar1d: return {0.0, m.E / (2.0 * measure * std::pow(delta, 3)), 1.0 / (2.0 * measure * delta * delta)};
-    case Setting::plane_stress:
-    case Setting::plane_strain: {
+    case core::Setting::bar1d: return {0.0, m.E / (2.0 * measure * std::pow(delta, 3)), 1.0 / (2.0 * measure * delta * delta)};
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain: {
       const double kappa = m.bulk_2d(s);
       return {0.5 * (kappa - 2.0 * mu), 6.0 * mu / (pi * measure * std::pow(delta, 4)),
               2.0 / (pi * measure * std::pow(delta, 3))};
     }
-    case Setting::solid3d:
+    case core::Setting::solid3d:
       return {0.5 * (m.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
   }

@@ -8,14 +8,14 @@
 //   Critical stretch from fracture energy G₀ (energy of all bonds crossing a unit
 //   crack area at s = s₀): 3D G₀ = (π c s₀²/2) I₄, 2D G₀ = c s₀² h I₃, 1D G₀ = (c s₀² A/2) I₂.
 #include "solver/pd/influence.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::pd {
 
 double influence_moment(Influence w, int n, double delta);
-double pmb_micromodulus(Influence w, Setting s, const Elastic& m, double delta, double measure);
-double lps_weighted_volume(Influence w, Setting s, double delta, double measure);
-double critical_stretch(Influence w, Setting s, const Elastic& m, double fracture_energy, double delta, double measure);
+double pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, double delta, double measure);
+double lps_weighted_volume(Influence w, core::Setting s, double delta, double measure);
+double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, double fracture_energy, double delta, double measure);
 
 // Coefficients of the state-based force scalar t = (A θ ω|ξ| + B ω e) / m and
 // energy W = ½ κ θ² + (B / 2m) Σ ω (e − γ θ |ξ|)² V  (docs/models/lps.md; 1D has no volumetric part).
@@ -23,12 +23,12 @@ struct LpsCoefficients {
   double A, B, kappa, gamma;
   int d;  // dimension in θ = (d/m) Σ ω |ξ| e V
 };
-LpsCoefficients lps_coefficients(Setting s, const Elastic& m);
+LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m);
 
 // Madenci & Oterkus constants (docs/models/lps.md), for cross-checking the same model.
 struct MadenciOterkus {
   double a, b, d;
 };
-MadenciOterkus madenci_oterkus(Setting s, const Elastic& m, double delta, double measure);
+MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double delta, double measure);
 
 }  // namespace pdmpm::pd

@@ -107,7 +107,7 @@ Estimate integrate(const std::function<double(double)>& f, double a, double b, c
   return {result, abserr};
 }
 
-Estimate integrate_horizon(Setting s, double delta, double measure, const HorizonIntegrand& f, const Options& opt) {
+Estimate integrate_horizon(core::Setting s, double delta, double measure, const HorizonIntegrand& f, const Options& opt) {
   using Eigen::Vector3d;
   // opt.epsabs is meant for the final integral: remove the measure, and give each
   // inner level its share so the inner errors summed by the outer rule stay ≤ epsabs.
@@ -157,13 +157,13 @@ Estimate integrate_horizon(Setting s, double delta, double measure, const Horizo
   }
 }
 
-Strain isotropic_strain(Setting s, double stretch) {
+Strain isotropic_strain(core::Setting s, double stretch) {
   Strain eps = Strain::Zero();
   for (int a = 0; a < dimension(s); ++a) eps(a, a) = stretch;
   return eps;
 }
 
-Estimate pmb_energy_density(Influence w, Setting s, double c, const Strain& eps, double delta, double measure,
+Estimate pmb_energy_density(Influence w, core::Setting s, double c, const Strain& eps, double delta, double measure,
                             const Options& opt) {
   // Bond energy ½ c ω s² |ξ| per unit volume², half of it assigned to each end.
   return integrate_horizon(
@@ -175,19 +175,19 @@ Estimate pmb_energy_density(Influence w, Setting s, double c, const Strain& eps,
       opt);
 }
 
-Estimate pmb_micromodulus(Influence w, Setting s, const Elastic& m, double delta, double measure, const Options& opt) {
+Estimate pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, double delta, double measure, const Options& opt) {
   // W_PD is linear in c and W_classical = k s²; with c = 1 and s = 1 the ratio is c.
   const Estimate unit = pmb_energy_density(w, s, 1.0, isotropic_strain(s, 1.0), delta, measure, opt);
   const double c = m.isotropic_energy_coefficient(s) / unit.value;
   return {c, c * unit.relerr()};
 }
 
-Estimate lps_weighted_volume(Influence w, Setting s, double delta, double measure, const Options& opt) {
+Estimate lps_weighted_volume(Influence w, core::Setting s, double delta, double measure, const Options& opt) {
   return integrate_horizon(
       s, delta, measure, [&](double r, const Eigen::Vector3d&) { return influence(w, r, delta) * r * r; }, opt);
 }
 
-Estimate lps_energy_density(Influence w, Setting s, const Elastic& mat, double m, const Strain& eps, double delta,
+Estimate lps_energy_density(Influence w, core::Setting s, const core::Elastic& mat, double m, const Strain& eps, double delta,
                             double measure, const Options& opt) {
   const LpsCoefficients k = lps_coefficients(s, mat);
   // θ can vanish by cancellation between directions (pure shear); its accuracy
@@ -221,7 +221,7 @@ Estimate lps_energy_density(Influence w, Setting s, const Elastic& mat, double m
   return {W, err};
 }
 
-Estimate fracture_energy(Influence w, Setting s, double c, double s0, double delta, double measure,
+Estimate fracture_energy(Influence w, core::Setting s, double c, double s0, double delta, double measure,
                          const Options& opt) {
   // A point at distance z below the crack plane; a bond of length ξ at angle φ
   // from the plane's normal crosses the plane iff ξ cos φ > z. Each crossing
@@ -265,7 +265,7 @@ Estimate fracture_energy(Influence w, Setting s, double c, double s0, double del
   }
 }
 
-Estimate critical_stretch(Influence w, Setting s, const Elastic& m, double G0, double delta, double measure,
+Estimate critical_stretch(Influence w, core::Setting s, const core::Elastic& m, double G0, double delta, double measure,
                           const Options& opt) {
   const Estimate c = pmb_micromodulus(w, s, m, delta, measure, opt);
   // G₀ ∝ s₀², so s₀ = sqrt(G₀ / G₀(s₀ = 1)).

@@ -26,7 +26,7 @@
 
 #include "solver/core/error.hpp"
 #include "solver/pd/influence.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::pd::quadrature {
 
@@ -59,31 +59,31 @@ using HorizonIntegrand = std::function<double(double r, const Eigen::Vector3d& n
 Estimate integrate(const std::function<double(double)>& f, double a, double b, const Options& opt = {});
 
 // ∫_H f dV over the horizon of radius δ in setting s.
-Estimate integrate_horizon(Setting s, double delta, double measure, const HorizonIntegrand& f, const Options& opt = {});
+Estimate integrate_horizon(core::Setting s, double delta, double measure, const HorizonIntegrand& f, const Options& opt = {});
 
 // Isotropic small strain s·1 restricted to the setting's dimensions.
-Strain isotropic_strain(Setting s, double stretch);
+Strain isotropic_strain(core::Setting s, double stretch);
 
 // PMB strain energy density for a small strain ε.
-Estimate pmb_energy_density(Influence w, Setting s, double c, const Strain& eps, double delta, double measure,
+Estimate pmb_energy_density(Influence w, core::Setting s, double c, const Strain& eps, double delta, double measure,
                             const Options& opt = {});
 // Micromodulus c from W_PD(c) = W_classical under isotropic expansion.
-Estimate pmb_micromodulus(Influence w, Setting s, const Elastic& m, double delta, double measure,
+Estimate pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, double delta, double measure,
                           const Options& opt = {});
 
 // Continuum weighted volume m = ∫_H ω |ξ|² dV.
-Estimate lps_weighted_volume(Influence w, Setting s, double delta, double measure, const Options& opt = {});
+Estimate lps_weighted_volume(Influence w, core::Setting s, double delta, double measure, const Options& opt = {});
 // Continuum LPS energy density for a small strain ε with weighted volume m
 // (the kernel of lps.hpp with sums replaced by integrals):
 //   θ = (d/m) ∫ ω |ξ| e dV,  W = ½ κ θ² + (B/2m) ∫ ω (e − γ θ |ξ|)² dV,  e = |ξ| n·ε·n.
-Estimate lps_energy_density(Influence w, Setting s, const Elastic& mat, double m, const Strain& eps, double delta,
+Estimate lps_energy_density(Influence w, core::Setting s, const core::Elastic& mat, double m, const Strain& eps, double delta,
                             double measure, const Options& opt = {});
 
 // Fracture energy of a PMB body with micromodulus c when every bond breaks at s₀.
-Estimate fracture_energy(Influence w, Setting s, double c, double s0, double delta, double measure,
+Estimate fracture_energy(Influence w, core::Setting s, double c, double s0, double delta, double measure,
                          const Options& opt = {});
 // s₀ from fracture_energy(c, s₀) = G₀, with c itself from pmb_micromodulus (quadrature).
-Estimate critical_stretch(Influence w, Setting s, const Elastic& m, double G0, double delta, double measure,
+Estimate critical_stretch(Influence w, core::Setting s, const core::Elastic& m, double G0, double delta, double measure,
                           const Options& opt = {});
 
 }  // namespace pdmpm::pd::quadrature

@@ -45,9 +45,9 @@ double angle_of(double x, double y) { return std::atan2(y, x) * 180.0 / std::num
 
 }  // namespace
 
-double rayleigh_speed(const Elastic& m, Setting s) {
+double rayleigh_speed(const core::Elastic& m, core::Setting s) {
   const double cs2 = m.shear() / m.rho;
-  const double k2 = m.shear() / m.longitudinal_modulus(s);  // (c_s / c_p)²
+  const double k2 = m.shear() / m.wave_modulus(s);  // (c_s / c_p)²
   // R(ξ) = (2 − ξ²)² − 4 √(1 − ξ²) √(1 − k² ξ²) has one root in (0, 1); bisection.
   auto R = [&](double x) {
     const double x2 = x * x;

@@ -83,7 +83,7 @@ struct CrackPath {
 
 // Rayleigh wave speed of an isotropic solid in the given setting: root of
 // (2 − ξ²)² = 4 √(1 − ξ²) √(1 − ξ² c_s²/c_p²), c_R = ξ c_s, with c_p of the setting.
-double rayleigh_speed(const Elastic& m, Setting s);
+double rayleigh_speed(const core::Elastic& m, core::Setting s);
 
 template <int D>
 class CrackObservables {

@@ -18,32 +18,4 @@ double influence(Influence w, double r, double delta) {
   return 0.0;
 }
 
-std::string_view name(Influence w) {
-  switch (w) {
-    case Influence::constant: return "constant";
-    case Influence::triangular: return "triangular";
-    case Influence::quadratic: return "quadratic";
-    case Influence::semi_elliptical: return "semi_elliptical";
-    case Influence::exponential: return "exponential";
-    case Influence::gaussian: return "gaussian";
-    case Influence::inverse_distance: return "inverse_distance";
-  }
-  return "?";
-}
-
-std::optional<Influence> parse_influence(std::string_view s) {
-  for (Influence w : all_influences)
-    if (name(w) == s) return w;
-  return std::nullopt;
-}
-
-std::string influence_names() {
-  std::string out;
-  for (Influence w : all_influences) {
-    if (!out.empty()) out += ", ";
-    out += name(w);
-  }
-  return out;
-}
-
 }  // namespace pdmpm::pd

@@ -32,12 +32,12 @@ const std::vector<ModelInfo>& model_table() {
   return table;
 }
 
-std::optional<double> ModelInfo::fixed_poisson(Setting s) const {
-  if (!pair_potential || s == Setting::bar1d) return std::nullopt;  // ν plays no role in a bar
-  return s == Setting::plane_stress ? 1.0 / 3.0 : 0.25;
+std::optional<double> ModelInfo::fixed_poisson(core::Setting s) const {
+  if (!pair_potential || s == core::Setting::bar1d) return std::nullopt;  // ν plays no role in a bar
+  return s == core::Setting::plane_stress ? 1.0 / 3.0 : 0.25;
 }
 
-std::pair<double, double> ModelInfo::poisson_range(Setting s) const {
+std::pair<double, double> ModelInfo::poisson_range(core::Setting s) const {
   if (const auto nu = fixed_poisson(s)) return {*nu, *nu};
   // ν = ½ is excluded: K = E / (3(1 − 2ν)) must stay finite (and κ₂ in plane stress).
   return pair_potential ? std::pair{0.0, 0.5} : std::pair{-1.0, 0.5};

@@ -59,9 +59,9 @@ struct ModelInfo {
 
   // The ν the model requires in a setting, if it fixes one: ¼ in 3D and plane
   // strain, ⅓ in plane stress for a pair potential; none in a 1D bar.
-  std::optional<double> fixed_poisson(Setting s) const;
+  std::optional<double> fixed_poisson(core::Setting s) const;
   // Admissible Poisson's ratio interval [lo, hi] in a setting.
-  std::pair<double, double> poisson_range(Setting s) const;
+  std::pair<double, double> poisson_range(core::Setting s) const;
   template <int D>
   std::unique_ptr<Model<D>> make() const;
 };

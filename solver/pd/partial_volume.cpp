@@ -15,19 +15,4 @@ double family_ratio(PartialVolume pv, double delta, double dx) {
   return (pv == PartialVolume::extended ? delta + 0.5 * dx : delta) / dx;
 }
 
-std::string_view name(PartialVolume pv) {
-  switch (pv) {
-    case PartialVolume::none: return "none";
-    case PartialVolume::seed001: return "seed001";
-    case PartialVolume::extended: return "extended";
-  }
-  return "?";
-}
-
-std::optional<PartialVolume> parse_partial_volume(std::string_view s) {
-  for (PartialVolume pv : {PartialVolume::none, PartialVolume::seed001, PartialVolume::extended})
-    if (name(pv) == s) return pv;
-  return std::nullopt;
-}
-
 }  // namespace pdmpm::pd

@@ -7,14 +7,14 @@ namespace {
 
 // 3D stress (xx, yy, zz, xy, yz, xz) from the in-plane/3D small strain.
 template <int D>
-Tensor6 hooke(const Mat<D>& eps, const Elastic& m, Setting s) {
+Tensor6 hooke(const Mat<D>& eps, const core::Elastic& m, core::Setting s) {
   Tensor6 out{};
   const double lam = m.lame(), G = m.shear();
   if constexpr (D == 1) {
     out[0] = m.E * eps(0, 0);
   } else if constexpr (D == 2) {
     const double tr = eps.trace();
-    if (s == Setting::plane_stress) {
+    if (s == core::Setting::plane_stress) {
       const double k = m.E / (1.0 - m.nu * m.nu);
       out[0] = k * (eps(0, 0) + m.nu * eps(1, 1));
       out[1] = k * (eps(1, 1) + m.nu * eps(0, 0));

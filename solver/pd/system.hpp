@@ -10,7 +10,7 @@
 #include "solver/core/particles.hpp"
 #include "solver/pd/bond_state.hpp"
 #include "solver/pd/bond_table.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::pd {
 
@@ -26,8 +26,8 @@ struct System {
   // empty when every real particle is PD (the kernels then visit all of them).
   std::vector<Index> owners;
 
-  Setting setting = Setting::solid3d;
-  Elastic material;
+  core::Setting setting = core::Setting::solid3d;
+  core::Elastic material;
   double delta = 0.0;    // horizon δ
   double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
   Influence influence = Influence::constant;

@@ -11,15 +11,6 @@
 namespace pdmpm::sim {
 namespace {
 
-mpm::Setting mpm_setting(pd::Setting s) {
-  switch (s) {
-    case pd::Setting::bar1d: return mpm::Setting::bar1d;
-    case pd::Setting::plane_stress: return mpm::Setting::plane_stress;
-    case pd::Setting::plane_strain: return mpm::Setting::plane_strain;
-    default: return mpm::Setting::solid3d;
-  }
-}
-
 template <int D>
 bc::ExpressionVariables variables(const Vec<D>& x, double t) {
   bc::ExpressionVariables v;
@@ -100,13 +91,8 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
   for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
 
   auto& st = out.settings;
-  st.setting = mpm_setting(s.setting);
-  st.material.model = m.constitutive;
-  st.material.E = s.material.E;
-  st.material.nu = s.material.nu;
-  st.material.rho = s.material.rho;
-  st.material.yield_stress = m.yield_stress;
-  st.material.tangent_modulus = m.tangent_modulus;
+  st.setting = s.setting;
+  st.material = {m.constitutive, s.material, s.hardening};
   st.shape = m.shape;
   st.gimp_domain = m.gimp_domain;
   st.scheme = m.scheme;
@@ -117,7 +103,7 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
   st.damping_viscous = m.damping_viscous;
   st.damping_local = m.damping_local;
   st.nonlocal = m.nonlocal;
-  st.failure = m.failure;
+  st.failure = s.failure;
   st.dt = s.time.dt.value_or(0.0);
   st.cfl = s.time.safety_factor;
 

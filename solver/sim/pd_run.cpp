@@ -199,7 +199,7 @@ void PdRun<D>::frame(std::int64_t step, double t) {
   if (wants("dilatation")) {
     std::vector<double> theta;
     s_.model->dilatation(s_.system, theta);
-    if (s_.system.setting == pd::Setting::plane_stress) {
+    if (s_.system.setting == core::Setting::plane_stress) {
       // Report the 3D dilatation: add ε_zz = −ν/(1−ν) (ε_xx + ε_yy).
       const double nu = s_.system.material.nu;
       for (double& th : theta) th *= 1.0 - nu / (1.0 - nu);
@@ -295,11 +295,11 @@ nlohmann::json PdRun<D>::summary() const {
   nlohmann::json j = {
       {"solver", "pd"},
       {"model", s_.model->name()},
-      {"influence", std::string(pd::name(sys.influence))},
-      {"partial_volume", std::string(pd::name(sys.partial_volume))},
+      {"influence", std::string(name(sys.influence))},
+      {"partial_volume", std::string(name(sys.partial_volume))},
       {"weighted_volume", sys.continuum_weighted_volume ? "continuum" : "discrete"},
       {"dimension", D},
-      {"setting", std::string(pd::name(sys.setting))},
+      {"setting", std::string(name(sys.setting))},
       {"spacing", sys.spacing()},
       {"horizon", sys.delta},
       {"horizon_ratio", sys.delta / sys.spacing()},

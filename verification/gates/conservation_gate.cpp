@@ -326,7 +326,7 @@ void energy_gates() {
     const double drift_E = std::abs(slope(t, E)) * T, drift_I = std::abs(slope(t, I)) * T;
     const std::string id = "conservation.energy." + model + "." + dim_name(D);
     // Largest bond strain scale: a/c with c the longitudinal speed.
-    const double c_long = std::sqrt(setup.system.material.longitudinal_modulus(setup.system.setting) / rho);
+    const double c_long = std::sqrt(setup.system.material.wave_modulus(setup.system.setting) / rho);
     const double strain = a / c_long * std::sqrt(static_cast<double>(D));
     test::record_gate({.id = id + ".shadow",
                        .claim = "Over 10⁴ velocity-Verlet steps at 0.8 × the Lanczos stable step (" + model + ", " +

@@ -20,7 +20,7 @@ namespace {
 
 using nlohmann::json;
 using pd::Influence;
-using pd::Setting;
+using core::Setting;
 namespace quad = pd::quadrature;
 
 constexpr double pi = std::numbers::pi;
@@ -34,16 +34,16 @@ constexpr double thickness = 1e-3;  // 2D plate thickness h
 constexpr double area = 1e-6;       // 1D bar cross-section A
 constexpr double G0 = 1000.0;       // fracture energy for the s₀ table (J/m²)
 
-const Setting all_settings[] = {Setting::bar1d, Setting::plane_stress, Setting::plane_strain, Setting::solid3d};
+const core::Setting all_settings[] = {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d};
 
-double measure_of(Setting s) {
+double measure_of(core::Setting s) {
   switch (s) {
-    case Setting::bar1d:
+    case core::Setting::bar1d:
       return area;
-    case Setting::plane_stress:
-    case Setting::plane_strain:
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain:
       return thickness;
-    case Setting::solid3d:
+    case core::Setting::solid3d:
       return 1.0;
   }
   return 1.0;
@@ -51,7 +51,7 @@ double measure_of(Setting s) {
 
 // PMB's Poisson's ratio per setting (Cauchy relation; Deryugin et al. 2023 §3, docs/models/pmb.md). ν
 // plays no role in a bar; 1/4 is used there so every setting has a value.
-pd::Elastic pmb_material(Setting s) { return {E, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, 7850.0}; }
+core::Elastic pmb_material(core::Setting s) { return {E, s == core::Setting::plane_stress ? 1.0 / 3.0 : 0.25, 7850.0}; }
 
 double rel_diff(double a, double b) { return std::abs(a - b) / std::abs(b); }
 std::string str(std::string_view v) { return std::string(v); }
@@ -76,7 +76,7 @@ std::string quadrature_reason(double worst_estimate) {
 
 TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
   json rows = json::array();
-  for (Setting s : all_settings) {
+  for (core::Setting s : all_settings) {
     const auto mat = pmb_material(s);
     const double meas = measure_of(s);
     double worst = 0.0, worst_est = 0.0;
@@ -85,14 +85,14 @@ TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
       const double closed = pd::pmb_micromodulus(w, s, mat, delta, meas);
       const auto q = quad::pmb_micromodulus(w, s, mat, delta, meas);
       const double d = rel_diff(q.value, closed);
-      if (d >= worst) worst = d, worst_w = str(pd::name(w));
+      if (d >= worst) worst = d, worst_w = str(name(w));
       worst_est = std::max(worst_est, q.relerr());
-      rows.push_back({str(pd::name(s)), str(pd::name(w)), mat.nu, closed, q.value, d, q.relerr()});
+      rows.push_back({str(name(s)), str(name(w)), mat.nu, closed, q.value, d, q.relerr()});
     }
-    test::record_gate({.id = "constants.pmb_c.quadrature." + str(pd::name(s)),
+    test::record_gate({.id = "constants.pmb_c.quadrature." + str(name(s)),
                        .claim = "The closed-form PMB micromodulus c shall equal c solved from the quadrature of W_PD = "
                        "W_classical over the horizon for all 7 influence functions in setting " +
-                           str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
+                           str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
                        .source = "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp", .unit = "", .problem = "constants"});
   }
@@ -110,7 +110,7 @@ TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
 
 TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
   json rows = json::array();
-  for (Setting s : all_settings) {
+  for (core::Setting s : all_settings) {
     const double meas = measure_of(s);
     double worst = 0.0, worst_est = 0.0;
     std::string worst_w;
@@ -118,14 +118,14 @@ TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
       const double closed = pd::lps_weighted_volume(w, s, delta, meas);
       const auto q = quad::lps_weighted_volume(w, s, delta, meas);
       const double d = rel_diff(q.value, closed);
-      if (d >= worst) worst = d, worst_w = str(pd::name(w));
+      if (d >= worst) worst = d, worst_w = str(name(w));
       worst_est = std::max(worst_est, q.relerr());
-      rows.push_back({str(pd::name(s)), str(pd::name(w)), closed, q.value, d, q.relerr()});
+      rows.push_back({str(name(s)), str(name(w)), closed, q.value, d, q.relerr()});
     }
-    test::record_gate({.id = "constants.lps_m.quadrature." + str(pd::name(s)),
+    test::record_gate({.id = "constants.lps_m.quadrature." + str(name(s)),
                        .claim = "The closed-form continuum LPS weighted volume m shall equal the quadrature of ∫_H ω|ξ|² dV "
                        "for all 7 influence functions in setting " +
-                           str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
+                           str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
                        .source = "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp", .unit = "", .problem = "constants"});
   }
@@ -142,7 +142,7 @@ TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
 
 TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
   json rows = json::array();
-  for (Setting s : all_settings) {
+  for (core::Setting s : all_settings) {
     const auto mat = pmb_material(s);
     const double meas = measure_of(s);
     double worst = 0.0, worst_est = 0.0;
@@ -151,14 +151,14 @@ TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
       const double closed = pd::critical_stretch(w, s, mat, G0, delta, meas);
       const auto q = quad::critical_stretch(w, s, mat, G0, delta, meas);
       const double d = rel_diff(q.value, closed);
-      if (d >= worst) worst = d, worst_w = str(pd::name(w));
+      if (d >= worst) worst = d, worst_w = str(name(w));
       worst_est = std::max(worst_est, q.relerr());
-      rows.push_back({str(pd::name(s)), str(pd::name(w)), mat.nu, closed, q.value, d, q.relerr()});
+      rows.push_back({str(name(s)), str(name(w)), mat.nu, closed, q.value, d, q.relerr()});
     }
-    test::record_gate({.id = "constants.s0.quadrature." + str(pd::name(s)),
+    test::record_gate({.id = "constants.s0.quadrature." + str(name(s)),
                        .claim = "The closed-form critical stretch s₀(G₀) shall equal s₀ solved from the nested quadrature of "
                        "the energy of all bonds crossing a unit crack area, for all 7 influence functions in setting " +
-                           str(pd::name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
+                           str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
                        .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
                        .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
                        "ω(ξ) kept inside the integral; constants.hpp",
@@ -201,7 +201,7 @@ double table42_tolerance_eps(Influence w) {
 
 TEST(FastConstants, Seed001Table42ReproducedExactly) {
   const double nu = 0.25;  // Deryugin et al. 2023 §3: PMB has ν = 1/4
-  const pd::Elastic mat{E, nu, 7850.0};
+  const core::Elastic mat{E, nu, 7850.0};
   const double d4 = delta * delta * delta * delta;
   const double base = E / ((1.0 - 2.0 * nu) * pi * d4);
   struct Printed {
@@ -220,12 +220,12 @@ TEST(FastConstants, Seed001Table42ReproducedExactly) {
   };
   json rows = json::array();
   for (const auto& t : table) {
-    const double ours = pd::pmb_micromodulus(t.w, Setting::solid3d, mat, delta, 1.0);
+    const double ours = pd::pmb_micromodulus(t.w, core::Setting::solid3d, mat, delta, 1.0);
     const double d = rel_diff(ours, t.value);
     const double tol = table42_tolerance_eps(t.w) * eps;
-    rows.push_back({str(pd::name(t.w)), t.form, t.value, ours, d, d / eps, tol});
-    test::record_gate({.id = "constants.seed001_table42." + str(pd::name(t.w)),
-                       .claim = "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(pd::name(t.w)) + ", " + t.form +
+    rows.push_back({str(name(t.w)), t.form, t.value, ours, d, d / eps, tol});
+    test::record_gate({.id = "constants.seed001_table42." + str(name(t.w)),
+                       .claim = "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(name(t.w)) + ", " + t.form +
                            ", shall equal our general formula c = 3E/(2π(1−2ν)I₃) to rounding",
                        .measured = d, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs,
                        .tolerance_reason = "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
@@ -253,26 +253,26 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
       "difference is ≤ 16ε; a wrong constant would be O(1).";
   json rows = json::array();
   {
-    const auto mat = pmb_material(Setting::plane_stress);  // ν = 1/3
+    const auto mat = pmb_material(core::Setting::plane_stress);  // ν = 1/3
     const double spec = 9.0 * E / (pi * thickness * delta * delta * delta);
-    const double ours = pd::pmb_micromodulus(Influence::constant, Setting::plane_stress, mat, delta, thickness);
+    const double ours = pd::pmb_micromodulus(Influence::constant, core::Setting::plane_stress, mat, delta, thickness);
     rows.push_back({"c, plane stress (ν = 1/3)", "9E/(πhδ³)", spec, ours, rel_diff(ours, spec)});
     test::record_gate({.id = "constants.spec.c_plane_stress_constant",
                        .claim = "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
                        .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
   }
   {
-    const auto mat = pmb_material(Setting::bar1d);
+    const auto mat = pmb_material(core::Setting::bar1d);
     const double spec = 2.0 * E / (area * delta * delta);
-    const double ours = pd::pmb_micromodulus(Influence::constant, Setting::bar1d, mat, delta, area);
+    const double ours = pd::pmb_micromodulus(Influence::constant, core::Setting::bar1d, mat, delta, area);
     rows.push_back({"c, 1D bar", "2E/(Aδ²)", spec, ours, rel_diff(ours, spec)});
     test::record_gate({.id = "constants.spec.c_1d_constant", .claim = "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
                        .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
   }
   {
-    const auto mat = pmb_material(Setting::solid3d);
+    const auto mat = pmb_material(core::Setting::solid3d);
     const double spec = std::sqrt(5.0 * G0 / (9.0 * mat.bulk() * delta));
-    const double ours = pd::critical_stretch(Influence::constant, Setting::solid3d, mat, G0, delta, 1.0);
+    const double ours = pd::critical_stretch(Influence::constant, core::Setting::solid3d, mat, G0, delta, 1.0);
     rows.push_back({"s₀, 3D", "sqrt(5G₀/(9Kδ))", spec, ours, rel_diff(ours, spec)});
     test::record_gate({.id = "constants.spec.s0_3d_constant",
                        .claim = "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))", .measured = rel_diff(ours, spec),
@@ -280,9 +280,9 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
                        .unit = "", .problem = "constants"});
   }
   {
-    const auto mat = pmb_material(Setting::plane_stress);
+    const auto mat = pmb_material(core::Setting::plane_stress);
     const double spec = std::sqrt(4.0 * pi * G0 / (9.0 * E * delta));
-    const double ours = pd::critical_stretch(Influence::constant, Setting::plane_stress, mat, G0, delta, thickness);
+    const double ours = pd::critical_stretch(Influence::constant, core::Setting::plane_stress, mat, G0, delta, thickness);
     rows.push_back({"s₀, plane stress (ν = 1/3)", "sqrt(4πG₀/(9Eδ))", spec, ours, rel_diff(ours, spec)});
     test::record_gate({.id = "constants.spec.s0_plane_stress_constant",
                        .claim = "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
@@ -317,23 +317,23 @@ struct MoConstants {
   double a, b, d;
 };
 
-MoConstants madenci_oterkus_typed(Setting s, const pd::Elastic& mat) {
+MoConstants madenci_oterkus_typed(core::Setting s, const core::Elastic& mat) {
   const double mu = mat.shear();
   switch (s) {
-    case Setting::bar1d:
+    case core::Setting::bar1d:
       return {0.0, E / (2.0 * area * std::pow(delta, 3)), 1.0 / (2.0 * area * delta * delta)};
-    case Setting::plane_stress:
-    case Setting::plane_strain:
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain:
       return {0.5 * (mat.bulk_2d(s) - 2.0 * mu), 6.0 * mu / (pi * thickness * std::pow(delta, 4)),
               2.0 / (pi * thickness * std::pow(delta, 3))};
-    case Setting::solid3d:
+    case core::Setting::solid3d:
       return {0.5 * (mat.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
   }
   return {};
 }
 
-double madenci_oterkus_energy(Setting s, const pd::Elastic& mat, const quad::Strain& eps_t, double* abserr) {
+double madenci_oterkus_energy(core::Setting s, const core::Elastic& mat, const quad::Strain& eps_t, double* abserr) {
   const MoConstants k = madenci_oterkus_typed(s, mat);
   const double meas = measure_of(s);
   auto w = [](double r) { return delta / r; };
@@ -356,19 +356,19 @@ double madenci_oterkus_energy(Setting s, const pd::Elastic& mat, const quad::Str
   return k.a * theta * theta + k.b * sum_e2.value;
 }
 
-double classical_energy(Setting s, const pd::Elastic& mat, const quad::Strain& eps_t) {
+double classical_energy(core::Setting s, const core::Elastic& mat, const quad::Strain& eps_t) {
   const double lam = mat.lame(), G = mat.shear();
   switch (s) {
-    case Setting::bar1d:
+    case core::Setting::bar1d:
       return 0.5 * E * eps_t(0, 0) * eps_t(0, 0);
-    case Setting::plane_stress: {
+    case core::Setting::plane_stress: {
       // In-plane strains with σ_zz = 0: λ* = 2λG/(λ + 2G).
       const Eigen::Matrix2d e2 = eps_t.topLeftCorner<2, 2>();
       const double lam_ps = 2.0 * lam * G / (lam + 2.0 * G);
       return 0.5 * lam_ps * e2.trace() * e2.trace() + G * (e2.array() * e2.array()).sum();
     }
-    case Setting::plane_strain:
-    case Setting::solid3d:
+    case core::Setting::plane_strain:
+    case core::Setting::solid3d:
       return 0.5 * lam * eps_t.trace() * eps_t.trace() + G * (eps_t.array() * eps_t.array()).sum();
   }
   return 0.0;
@@ -376,10 +376,10 @@ double classical_energy(Setting s, const pd::Elastic& mat, const quad::Strain& e
 
 TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
   // Any admissible ν: the state-based model is not tied to PMB's 1/4 or 1/3.
-  const pd::Elastic mat{E, 0.3, 7850.0};
+  const core::Elastic mat{E, 0.3, 7850.0};
   const double strain = 1e-3;
   json rows = json::array();
-  for (Setting s : all_settings) {
+  for (core::Setting s : all_settings) {
     const double meas = measure_of(s);
     const double m = pd::lps_weighted_volume(Influence::inverse_distance, s, delta, meas);
     struct Load {
@@ -387,7 +387,7 @@ TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
       quad::Strain eps_t;
     };
     std::vector<Load> loads = {{"isotropic expansion", quad::isotropic_strain(s, strain)}};
-    if (s != Setting::bar1d) {
+    if (s != core::Setting::bar1d) {
       quad::Strain shear = quad::Strain::Zero();
       shear(0, 1) = shear(1, 0) = 0.5 * strain;  // engineering shear γ = strain
       loads.push_back({"pure shear", shear});
@@ -398,12 +398,12 @@ TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
       const auto W_ours = quad::lps_energy_density(Influence::inverse_distance, s, mat, m, load.eps_t, delta, meas);
       const double W_cl = classical_energy(s, mat, load.eps_t);
       const double d = rel_diff(W_ours.value, W_mo);
-      rows.push_back({str(pd::name(s)), load.name, W_mo, W_ours.value, W_cl, d, rel_diff(W_ours.value, W_cl)});
+      rows.push_back({str(name(s)), load.name, W_mo, W_ours.value, W_cl, d, rel_diff(W_ours.value, W_cl)});
       const std::string load_id = load.name[0] == 'i' ? "isotropic" : "shear";
-      test::record_gate({.id = "constants.madenci_oterkus." + str(pd::name(s)) + "." + load_id,
+      test::record_gate({.id = "constants.madenci_oterkus." + str(name(s)) + "." + load_id,
                          .claim = "Madenci & Oterkus' LPS form (w = δ/|ξ|, their a, b, d) and ours (lps_coefficients, "
                          "continuum m, ω = δ/|ξ|) shall give the same continuum energy density for " +
-                             std::string(load.name) + " in setting " + str(pd::name(s)),
+                             std::string(load.name) + " in setting " + str(name(s)),
                          .measured = d, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs,
                          .tolerance_reason = quadrature_reason(std::max(mo_err / std::abs(W_mo), W_ours.relerr())),
                          .source = "[madenci-oterkus2014] ch. 4 and [madenci-oterkus2016] (JMPS "

@@ -108,20 +108,20 @@ void run_all(double spacing, const std::string& tag) {
   std::string order;
   for (Influence w : influences) {
     scene.influence = w;
-    const std::string name(pd::name(w));
-    const auto run = test::run_for_gate(scene, problem, tag + "_" + name);
+    const std::string label(name(w));
+    const auto run = test::run_for_gate(scene, problem, tag + "_" + label);
     const auto& s = run.summary;
     const double fraction = s.at("metrics").at("broken_bonds").get<double>() / s.at("bonds").get<double>();
     const Frame3d f = read_last(run);
     const double asym = fourfold_asymmetry(f, spacing);
     worst_asym = std::max(worst_asym, asym);
-    const double c = pd::pmb_micromodulus(w, pd::Setting::solid3d, scene.material, scene.delta, 1.0);
-    rows.push_back({name, c, fraction, s.at("metrics").at("max_damage"), asym, s.at("particles"), s.at("steps"),
+    const double c = pd::pmb_micromodulus(w, core::Setting::solid3d, scene.material, scene.delta, 1.0);
+    rows.push_back({label, c, fraction, s.at("metrics").at("max_damage"), asym, s.at("particles"), s.at("steps"),
                     s.at("wall_time_s")});
     std::vector<std::array<double, 3>> x0 = f.x0;
     tops.push_back(test::layer_map(x0, f.damage, spacing, 2, H - 0.5 * spacing, spacing < 0.6e-3 ? 2 : 3));
     sections.push_back(section(f, spacing, 0.015, -0.004, H + 0.001, 12000.0));
-    order += (order.empty() ? "" : ", ") + name;
+    order += (order.empty() ? "" : ", ") + label;
   }
   const std::string at = " (Δx = " + std::to_string(spacing * 1e3).substr(0, 5) + " mm)";
   test::record_gate({.id = "disk_impact.symmetry." + tag,

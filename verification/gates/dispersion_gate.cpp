@@ -35,7 +35,7 @@ namespace pdmpm {
 namespace {
 
 using nlohmann::json;
-using pd::Setting;
+using core::Setting;
 constexpr double pi = std::numbers::pi;
 constexpr double dx = 1e-3;
 constexpr double E = 200e9, rho = 7850.0;
@@ -53,16 +53,16 @@ struct Discretisation {
   pd::PartialVolume pv = pd::PartialVolume::seed001;
 };
 
-pd::Elastic material_for(const std::string& model, Setting s) {
+core::Elastic material_for(const std::string& model, core::Setting s) {
   if (const auto nu = pd::model_info(model).fixed_poisson(s)) return {E, *nu, rho};
   return {E, 0.3, rho};
 }
 
-double classical_speed(const pd::Elastic& m, Setting s) { return std::sqrt(m.longitudinal_modulus(s) / m.rho); }
+double classical_speed(const core::Elastic& m, core::Setting s) { return std::sqrt(m.wave_modulus(s) / m.rho); }
 
 // Slab of N sites along x, `width` sites across, closed by symmetry planes on every face.
-std::string slab_scene(const std::string& model, Setting s, int N, int width, const Discretisation& d) {
-  const int D = pd::dimension(s);
+std::string slab_scene(const std::string& model, core::Setting s, int N, int width, const Discretisation& d) {
+  const int D = core::dimension(s);
   const auto mat = material_for(model, s);
   std::string lo = "[0", hi = "[";
   hi += g17(N * dx);
@@ -70,17 +70,17 @@ std::string slab_scene(const std::string& model, Setting s, int N, int width, co
   lo += "]", hi += "]";
   std::string t = "[scene]\nid = \"dispersion\"\n[discretization]\ndimension = " + std::to_string(D) +
                   "\nspacing = " + g17(dx) + "\nhorizon_ratio = " + g17(d.ratio) + "\npartial_volume = \"" +
-                  str(pd::name(d.pv)) + "\"\n";
+                  str(name(d.pv)) + "\"\n";
   if (D == 2) {
     t += "plane = \"";
-    t += s == Setting::plane_stress ? "stress" : "strain";
+    t += s == core::Setting::plane_stress ? "stress" : "strain";
     t += "\"\nthickness = 1e-3\n";
   }
   if (D == 1) t += "area = 1e-6\n";
   t += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
   t += "[material]\ndensity = " + g17(rho) + "\nyoungs_modulus = " + g17(E) + "\n";
   if (!pd::model_info(model).pair_potential) t += "poissons_ratio = " + g17(mat.nu) + "\n";
-  t += "[model]\ntype = \"" + model + "\"\ninfluence = \"" + str(pd::name(d.influence)) + "\"\n[time]\nsteps = 1\n";
+  t += "[model]\ntype = \"" + model + "\"\ninfluence = \"" + str(name(d.influence)) + "\"\n[time]\nsteps = 1\n";
   const char* axes[] = {"x", "y", "z"};
   for (int a = 0; a < D; ++a) {
     const double far = (a == 0 ? N : width) * dx;
@@ -93,7 +93,7 @@ std::string slab_scene(const std::string& model, Setting s, int N, int width, co
 // ρω² of the mode u_x = sin(kx) from the lattice relation (per unit ρ: returns ω²).
 // NaN for a model without a derived relation.
 template <int D>
-double relation_omega2(const std::string& model, Setting s, const pd::Elastic& mat, const Discretisation& d,
+double relation_omega2(const std::string& model, core::Setting s, const core::Elastic& mat, const Discretisation& d,
                        double measure, double k) {
   const double delta = d.ratio * dx;
   const auto st = core::Stencil<D>::build(pd::family_ratio(d.pv, delta, dx));
@@ -131,7 +131,7 @@ struct Slab {
 };
 
 template <int D>
-Slab<D> make_slab(const std::string& model, Setting s, int N, int width, const Discretisation& d) {
+Slab<D> make_slab(const std::string& model, core::Setting s, int N, int width, const Discretisation& d) {
   Slab<D> sl{sim::build_pd<D>(io::parse_scene_text(slab_scene(model, s, N, width, d), "dispersion")), N * dx, 0.0};
   sl.dt = 0.8 * time::silling_askari_step<D>(sl.setup.system, *sl.setup.model);
   return sl;
@@ -177,8 +177,8 @@ int slab_width(const Discretisation& d) {
 }
 
 template <int D>
-void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows) {
-  const std::string tag = model + "." + str(pd::name(s));
+void dispersion_suite(const std::string& model, core::Setting s, json& long_wave_rows) {
+  const std::string tag = model + "." + str(name(s));
   const auto mat = material_for(model, s);
   const double measure = test::default_measure(s);
   const double c_cl = classical_speed(mat, s);
@@ -217,7 +217,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
     test::record_gate({.id = "dispersion." + tag + ".relation",
                        .claim = "The frequency of a small-amplitude standing plane wave along x (measured from the Verlet "
                        "time series) shall equal the derived lattice dispersion relation for kδ = 0.15 … 9.3 (" +
-                           model + ", " + str(pd::name(s)) +
+                           model + ", " + str(name(s)) +
                            ", ω = 1, seed001, m = 3.015; measured: worst |ω²/ω²_lattice − 1|)",
                        .measured = worst, .expected = 0.0, .tolerance = 1e-7, .compare = test::Compare::abs,
                        .tolerance_reason = "The mode is an exact eigenmode of the linearised lattice, so the only differences are the "
@@ -237,7 +237,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
   test::record_gate({.id = "dispersion." + tag + ".long_wave",
                      .claim = "As kδ → 0 the measured wave speed shall approach the classical longitudinal speed of the "
                      "setting within 1 % on a lattice whose sums are converged (" +
-                         model + ", " + str(pd::name(s)) +
+                         model + ", " + str(name(s)) +
                          ", ω = 1, m = 8.015, extended partial volume; measured: c₀/c_classical − 1, Richardson over "
                          "kδ = " + g17(k1 * conv.ratio * dx).substr(0, 6) + " and twice that)",
                      .measured = c0 - 1.0, .expected = 0.0, .tolerance = 0.01, .compare = test::Compare::abs,
@@ -247,13 +247,13 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
                      "and the claim does not hold (see the tables): that is reported, not gated.",
                      .source = "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
                      .unit = "", .problem = "dispersion"});
-  long_wave_rows.push_back({model, str(pd::name(s)), c_cl, c0_default - 1.0,
+  long_wave_rows.push_back({model, str(name(s)), c_cl, c0_default - 1.0,
                             std::sqrt(relation_omega2<D>(model, s, mat, def, measure, 1e-3 / dx)) / (1e-3 / dx) / c_cl - 1.0,
                             c0 - 1.0});
 
   test::record_data("dispersion", "modes_" + tag,
                     {{"kind", "table"},
-                     {"title", "Standing waves, " + model + ", " + str(pd::name(s)) + " (ω = 1, seed001, m = 3.015)"},
+                     {"title", "Standing waves, " + model + ", " + str(name(s)) + " (ω = 1, seed001, m = 3.015)"},
                      {"columns",
                       {"mode n", "kδ", "kΔx", "ω measured [1/s]", "ω lattice relation [1/s]", "c/c_classical measured",
                        "c/c_classical relation", "ω²/ω²_relation − 1"}},
@@ -267,7 +267,7 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
   series.push_back({{"label", "classical"}, {"x", {0.0, kd_fine.back()}}, {"y", {1.0, 1.0}}, {"style", "dashed"}});
   test::record_data("dispersion", "plot_" + tag,
                     {{"kind", "plot"},
-                     {"title", "Dispersion, " + model + ", " + str(pd::name(s)) + " (ω = 1, seed001, m = 3.015)"},
+                     {"title", "Dispersion, " + model + ", " + str(name(s)) + " (ω = 1, seed001, m = 3.015)"},
                      {"xlabel", "kδ"},
                      {"ylabel", "phase speed / classical longitudinal speed"},
                      {"xscale", "linear"},
@@ -278,10 +278,10 @@ void dispersion_suite(const std::string& model, Setting s, json& long_wave_rows)
 TEST(FastDispersion, AllModelsAndSettings) {
   json lw = json::array();
   for (const auto& model : pd::model_names()) {
-    dispersion_suite<1>(model, Setting::bar1d, lw);
-    dispersion_suite<2>(model, Setting::plane_stress, lw);
-    dispersion_suite<2>(model, Setting::plane_strain, lw);
-    dispersion_suite<3>(model, Setting::solid3d, lw);
+    dispersion_suite<1>(model, core::Setting::bar1d, lw);
+    dispersion_suite<2>(model, core::Setting::plane_stress, lw);
+    dispersion_suite<2>(model, core::Setting::plane_strain, lw);
+    dispersion_suite<3>(model, core::Setting::solid3d, lw);
   }
   test::record_data("dispersion", "long_wave",
                     {{"kind", "table"},
@@ -301,15 +301,15 @@ TEST(FastDispersion, AllModelsAndSettings) {
 TEST(FastDispersion, LongWaveErrorVersusHorizonRatio) {
   json rows = json::array();
   for (const auto& model : pd::model_names()) {
-    for (Setting s : {Setting::bar1d, Setting::plane_stress, Setting::plane_strain, Setting::solid3d}) {
+    for (core::Setting s : {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d}) {
       const auto mat = material_for(model, s);
       for (pd::PartialVolume pv : {pd::PartialVolume::seed001, pd::PartialVolume::extended}) {
-        json row = {model, str(pd::name(s)), str(pd::name(pv))};
+        json row = {model, str(name(s)), str(name(pv))};
         for (double m : {3.015, 4.015, 5.015, 6.015, 8.015}) {
           Discretisation d{pd::Influence::constant, m, pv};
           const double k = 1e-4 / dx;
           double w2 = 0.0;
-          switch (pd::dimension(s)) {
+          switch (core::dimension(s)) {
             case 1: w2 = relation_omega2<1>(model, s, mat, d, test::default_measure(s), k); break;
             case 2: w2 = relation_omega2<2>(model, s, mat, d, test::default_measure(s), k); break;
             default: w2 = relation_omega2<3>(model, s, mat, d, test::default_measure(s), k); break;

@@ -136,7 +136,7 @@ Surface surface_factor() {
   t << "[scene]\nid = \"surface_effect\"\n[discretization]\ndimension = 2\nplane = \"stress\"\nspacing = " << dx
     << "\nhorizon_ratio = " << ratio << "\nthickness = 1e-3\n[[shape]]\ntype = \"rectangle\"\nmin = [0.0, 0.0]\nmax = [" << side << ", " << side
     << "]\n[material]\ndensity = " << base.material.rho << "\nyoungs_modulus = " << base.material.E << "\npoissons_ratio = " << nu
-    << "\n[model]\ntype = \"lps\"\ninfluence = \"" << pd::name(base.influence) << "\"\n[time]\nintegrator = \"adr\"\ntolerance = 1e-9\n"
+    << "\n[model]\ntype = \"lps\"\ninfluence = \"" << name(base.influence) << "\"\n[time]\nintegrator = \"adr\"\ntolerance = 1e-9\n"
     << "[[boundary]]\nname = \"far\"\nkind = \"analytic\"\ncallback = \"affine\"\nparameters = { h_xx = " << -nu * eps << ", h_yy = " << eps << " }\n"
     << "region = [{ type = \"box\", min = [0.0, 0.0], max = [" << side - 8 * delta << ", " << side << "] },"
     << " { type = \"box\", min = [0.0, 0.0], max = [" << side << ", " << 3 * delta << "] },"
@@ -265,13 +265,13 @@ TEST(FastHoleConcentration, SpeedAgainstAccuracy) {
   std::string worst;
   for (auto w : influences)
     for (double m : ratios) {
-      const std::string label = std::string(pd::name(w)) + ", m = " + std::to_string(m).substr(0, 5);
+      const std::string label = std::string(name(w)) + ", m = " + std::to_string(m).substr(0, 5);
       std::vector<double> err;
       for (int n : ns) {
         const Level lv = solve(n, m, w);
         err.push_back(std::abs(lv.k_edge / kref - 1.0));
         points.push_back({label, lv.seconds, err.back()});
-        rows.push_back({std::string(pd::name(w)), m, n, 1e3 * lv.dx, lv.particles, lv.iterations, lv.k_edge, err.back(), lv.seconds});
+        rows.push_back({std::string(name(w)), m, n, 1e3 * lv.dx, lv.particles, lv.iterations, lv.k_edge, err.back(), lv.seconds});
       }
       if (!(err.back() < err.front())) refinement_pays = false, worst += label + "; ";
     }

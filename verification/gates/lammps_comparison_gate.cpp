@@ -180,7 +180,7 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
                      .tolerance_reason = "as for the displacements: the same integrator in exact arithmetic", .source = "[parks2008]; [thompson2022] (LAMMPS side by side)", .unit = "", .problem = problem});
   test::record_data(problem, "01_elastic",
                     {{"kind", "table"},
-                     {"title", "Elastic PMB indentation: pdmpm vs LAMMPS (disk_impact_elastic.toml)"},
+                     {"title", "core::Elastic PMB indentation: pdmpm vs LAMMPS (disk_impact_elastic.toml)"},
                      {"columns", {"quantity", "value"}},
                      {"rows", json::array({json::array({"particles", p.n_real}), json::array({"steps", steps}),
                                            json::array({"bond sides (pdmpm / LAMMPS)",

@@ -56,11 +56,11 @@ const Influence studied[] = {Influence::constant, Influence::quadratic, Influenc
 const double table_ratios[] = {2.0, 2.5, 3.0, 3.015, 4.0, 5.0, 6.0, 7.0, 8.0};
 
 template <int D>
-pd::Setting setting() {
-  return D == 3 ? pd::Setting::solid3d : pd::Setting::plane_stress;
+core::Setting setting() {
+  return D == 3 ? core::Setting::solid3d : core::Setting::plane_stress;
 }
 template <int D>
-pd::Elastic pmb_material() {
+core::Elastic pmb_material() {
   return {200e9, D == 3 ? 0.25 : 1.0 / 3.0, 7850.0};
 }
 template <int D>
@@ -197,7 +197,7 @@ void study(const char* dim) {
         const auto env = envelope(sc, err);
         const double order = fitted_order(env);
         const double step = max_step_ratio(env);
-        json row = {dim, is_pmb ? "PMB W" : "LPS m", std::string(pd::name(w)), std::string(pd::name(pv))};
+        json row = {dim, is_pmb ? "PMB W" : "LPS m", std::string(name(w)), std::string(name(pv))};
         for (double r : table_ratios) {
           const auto e = lattice_errors<D>(w, pv, r);
           row.push_back(is_pmb ? e.pmb : e.m);
@@ -216,17 +216,17 @@ void study(const char* dim) {
 
         if (w != Influence::inverse_distance) {
           plots[std::string("error_") + q + "_" + dim]["series"].push_back(
-              {{"label", std::string(pd::name(pv)) + ", ω = " + std::string(pd::name(w))},
+              {{"label", std::string(name(pv)) + ", ω = " + std::string(name(w))},
                {"x", sc.ratio},
                {"y", err},
                {"style", w == Influence::constant ? "line" : "dashed"}});
         }
 
         if (!expected_second_order(w, pv)) continue;
-        const std::string id = std::string("lattice_sums.") + q + "." + dim + "." + std::string(pd::name(w)) + "." +
-                               std::string(pd::name(pv));
+        const std::string id = std::string("lattice_sums.") + q + "." + dim + "." + std::string(name(w)) + "." +
+                               std::string(name(pv));
         const std::string what = std::string(is_pmb ? "PMB energy density" : "LPS weighted volume") + " (" + dim +
-                                 ", ω = " + std::string(pd::name(w)) + ", partial volume " + std::string(pd::name(pv)) +
+                                 ", ω = " + std::string(name(w)) + ", partial volume " + std::string(name(pv)) +
                                  ")";
         test::record_gate({.id = id + ".decreasing",
                            .claim = "The largest lattice-sum error of the " + what +
@@ -308,7 +308,7 @@ void block_matches_stencil(const char* dim) {
     const auto st = lattice_errors<D>(Influence::constant, pv, 3.015);
     const double d = std::max(std::abs(W_block - st.pmb), std::abs(m_block - st.m));
     worst = std::max(worst, d);
-    rows.push_back({dim, std::string(pd::name(pv)), W_block, st.pmb, m_block, st.m});
+    rows.push_back({dim, std::string(name(pv)), W_block, st.pmb, m_block, st.m});
   }
   test::record_gate({.id = std::string("lattice_sums.block_equals_stencil.") + dim,
                      .claim = std::string("The PMB energy density and LPS weighted volume at the centre of a make_block "

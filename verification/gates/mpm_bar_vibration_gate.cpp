@@ -41,11 +41,11 @@ BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
   auto particles = mu::box_particles<1>(Vec<1>(0.0), Vec<1>(kL), dx);
   for (Index p = 0; p < particles.n_real; ++p) particles.v[p][0] = kV0 * std::sin(kBeta * particles.x0[p][0]);
   mpm::Settings<1> s;
-  s.setting = mpm::Setting::bar1d;
+  s.setting = core::Setting::bar1d;
   s.cell_size = h;
   s.shape = shape;
   s.scheme = scheme;
-  s.material = {mpm::MaterialModel::linear_elastic, kE, 0.0, kRho};
+  s.material = {mpm::MaterialModel::linear_elastic, {kE, 0.0, kRho}};
   mpm::GridBc<1> fixed;
   fixed.name = "fixed end";
   fixed.kind = mirror_end ? mpm::BcKind::symmetry : mpm::BcKind::fixed;
@@ -104,11 +104,11 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
       const BarResult r = run_bar(n, c.shape, mpm::UpdateScheme::musl, 0.1, c.mirror);
       eu.push_back(r.err_u);
       ev.push_back(r.err_v);
-      rows.push_back({std::string(mpm::name(c.shape)) + (c.mirror ? " (mirror end)" : ""), "musl", n, r.err_u, r.err_v,
+      rows.push_back({std::string(name(c.shape)) + (c.mirror ? " (mirror end)" : ""), "musl", n, r.err_u, r.err_v,
                       r.energy_drift});
     }
     const double pu = mu::fitted_order(hs, eu), pv = mu::fitted_order(hs, ev);
-    const std::string label = std::string(mpm::name(c.shape));
+    const std::string label = std::string(name(c.shape));
     plot_series.push_back(mu::series(label + " u_cm (order " + std::to_string(pu).substr(0, 4) + ")", hs, eu, "points"));
     plot_series.push_back(mu::series(label + " v_cm (order " + std::to_string(pv).substr(0, 4) + ")", hs, ev, "points"));
     if (!c.gated) continue;
@@ -148,7 +148,7 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
     for (auto shape : {mpm::ShapeFunction::linear, mpm::ShapeFunction::gimp})
       for (int n : {16, 32, 64}) {
         const BarResult r = run_bar(n, shape, scheme, 0.1, false);
-        rows.push_back({std::string(mpm::name(shape)), std::string(mpm::name(scheme)), n, r.err_u, r.err_v, r.energy_drift});
+        rows.push_back({std::string(name(shape)), std::string(name(scheme)), n, r.err_u, r.err_v, r.energy_drift});
       }
   for (int n : {16, 32, 64}) {
     const BarResult r = run_bar(n, mpm::ShapeFunction::bspline2, mpm::UpdateScheme::musl, 0.1, false);

@@ -77,12 +77,12 @@ CookResult run_cook(int cells_along_48, mpm::ShapeFunction shape, double damping
   for (auto& k : particles.kind) k = core::ParticleKind::mpm;
   const double F = 1e-4;
   mpm::Settings<2> s;
-  s.setting = mpm::Setting::plane_stress;
+  s.setting = core::Setting::plane_stress;
   s.shape = shape;
   // USL: the strain is integrated from the same grid velocity that moves the particles,
   // so the static state has F consistent with x (MUSL's remapped velocity is not).
   s.scheme = mpm::UpdateScheme::usl;
-  s.material = {mpm::MaterialModel::linear_elastic, 1.0, 1.0 / 3.0, 1.0};
+  s.material = {mpm::MaterialModel::linear_elastic, {1.0, 1.0 / 3.0, 1.0}};
   s.cell_size = h;
   s.damping_viscous = damping;
   s.flip = flip;
@@ -145,10 +145,10 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
       const CookResult r = run_cook(n, shape, 0.022, 40000);
       tips.push_back(r.tip);
       errs.push_back(std::abs(r.tip - kReference));
-      rows.push_back({std::string(mpm::name(shape)), n, 48.0 / n, r.tip, (r.tip - kReference) / kReference, r.steps});
+      rows.push_back({std::string(name(shape)), n, 48.0 / n, r.tip, (r.tip - kReference) / kReference, r.steps});
     }
     const double order = mu::fitted_order(hs, errs);
-    plot.push_back(mu::series(std::string(mpm::name(shape)) + " (fitted order " + std::to_string(order).substr(0, 4) + ")",
+    plot.push_back(mu::series(std::string(name(shape)) + " (fitted order " + std::to_string(order).substr(0, 4) + ")",
                               hs, tips, "points"));
     if (shape == mpm::ShapeFunction::gimp) {
       test::record_gate(Gate{.id = "mpm.cooks_membrane." + tag + ".gimp_tip",

@@ -55,13 +55,13 @@ MmsResult<D> run_mms(const std::array<Axis, D>& axes, double nu, int cells, mpm:
   for (Index p = 0; p < particles.n_real; ++p)
     for (int a = 0; a < D; ++a) particles.v[p][a] = axes[a].v(particles.x0[p][a], 0.0);
   mpm::Settings<D> s;
-  s.setting = D == 1 ? mpm::Setting::uniaxial_strain : mpm::Setting::plane_strain;
+  s.setting = D == 1 ? core::Setting::uniaxial_strain : core::Setting::plane_strain;
   s.cell_size = h;
   s.shape = shape;
   s.gimp_domain = cpgimp ? mpm::GimpDomain::stretch : mpm::GimpDomain::fixed;
   s.scheme = scheme;
-  s.material = {mpm::MaterialModel::neo_hookean, kE, nu, kRho};
-  const double mu_ = s.material.shear(), lambda = s.material.lame();
+  s.material = {mpm::MaterialModel::neo_hookean, {kE, nu, kRho}};
+  const double mu_ = s.material.elastic.shear(), lambda = s.material.elastic.lame();
   s.body_acceleration = [=](const Vec<D>& X, double t) {
     double J = 1.0;
     for (int a = 0; a < D; ++a) J *= axes[a].F(X[a], t);

@@ -25,13 +25,13 @@ namespace mu = test::mpm_util;
 const char* kProblem = "mpm_patch";
 
 template <int D>
-mpm::Settings<D> base_settings(mpm::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
+mpm::Settings<D> base_settings(core::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
                                mpm::MaterialModel model) {
   mpm::Settings<D> s;
   s.setting = setting;
   s.shape = shape;
   s.scheme = scheme;
-  s.material = {model, 200e9, 0.3, 7800.0, 300e6, 2e9};
+  s.material = {model, {200e9, 0.3, 7800.0}, {300e6, 2e9}};
   return s;
 }
 
@@ -46,7 +46,7 @@ Mat<D> uniform_F() {
 }
 
 template <int D>
-double uniform_stress_deviation(mpm::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme) {
+double uniform_stress_deviation(core::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme) {
   auto particles = mu::box_particles<D>(Vec<D>::Zero(), Vec<D>::Ones(), 1.0 / 16.0, 1e-2);
   mpm::Settings<D> s = base_settings<D>(setting, shape, scheme, mpm::MaterialModel::linear_elastic);
   // Hold every node whose support reaches beyond the body: nodes on or outside the
@@ -75,11 +75,11 @@ TEST(FastMpmPatch, UniformStressStaysUniform) {
   nlohmann::json rows = nlohmann::json::array();
   for (auto shape : {mpm::ShapeFunction::linear, mpm::ShapeFunction::gimp, mpm::ShapeFunction::bspline2})
     for (auto scheme : {mpm::UpdateScheme::usf, mpm::UpdateScheme::usl, mpm::UpdateScheme::musl}) {
-      const double d1 = uniform_stress_deviation<1>(mpm::Setting::bar1d, shape, scheme);
-      const double d2s = uniform_stress_deviation<2>(mpm::Setting::plane_stress, shape, scheme);
-      const double d2e = uniform_stress_deviation<2>(mpm::Setting::plane_strain, shape, scheme);
-      const double d3 = uniform_stress_deviation<3>(mpm::Setting::solid3d, shape, scheme);
-      rows.push_back({std::string(mpm::name(shape)), std::string(mpm::name(scheme)), d1, d2s, d2e, d3});
+      const double d1 = uniform_stress_deviation<1>(core::Setting::bar1d, shape, scheme);
+      const double d2s = uniform_stress_deviation<2>(core::Setting::plane_stress, shape, scheme);
+      const double d2e = uniform_stress_deviation<2>(core::Setting::plane_strain, shape, scheme);
+      const double d3 = uniform_stress_deviation<3>(core::Setting::solid3d, shape, scheme);
+      rows.push_back({std::string(name(shape)), std::string(name(scheme)), d1, d2s, d2e, d3});
       worst = std::max({worst, d1, d2s, d2e, d3});
     }
   test::record_gate(Gate{.id = "mpm.patch.uniform_stress",
@@ -103,7 +103,7 @@ TEST(FastMpmPatch, UniformStressStaysUniform) {
 
 // Quarter turn of a pre-stressed (elastic, or plastic for J2) body in rigid rotation.
 template <int D>
-std::pair<double, double> rigid_rotation(mpm::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
+std::pair<double, double> rigid_rotation(core::Setting setting, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
                                          mpm::MaterialModel model, double prestrain) {
   const Vec<D> centre = Vec<D>::Constant(0.5);
   auto particles = mu::box_particles<D>(Vec<D>::Zero(), Vec<D>::Ones(), 1.0 / 8.0, 1e-2);
@@ -135,7 +135,7 @@ std::pair<double, double> rigid_rotation(mpm::Setting setting, mpm::ShapeFunctio
     const Mat<D> Rd = mpm::polar_log<D>(sim.state().F[p] * F0.inverse()).R;
     const Mat<3> R = mpm::embed_deformation<D>(Rd);
     const Mat<3> back = R.transpose() * sim.state().stress[p] * R;
-    dev = std::max(dev, (back - sigma0).norm() / s.material.E);
+    dev = std::max(dev, (back - sigma0).norm() / s.material.elastic.E);
     angle_err = std::max(angle_err, std::abs(std::atan2(Rd(1, 0), Rd(0, 0)) - M_PI / 2));
   }
   return {dev, angle_err};
@@ -149,11 +149,11 @@ TEST(FastMpmPatch, RigidRotationLeavesStressUnchanged) {
       for (auto scheme : {mpm::UpdateScheme::usf, mpm::UpdateScheme::musl}) {
         // J2 pre-strain beyond yield (σ_y/E = 1.5e-3), so the rotated state is plastic.
         const double pre = model == mpm::MaterialModel::j2 ? 4e-3 : 1e-3;
-        const auto set2 = model == mpm::MaterialModel::neo_hookean ? mpm::Setting::plane_strain : mpm::Setting::plane_stress;
+        const auto set2 = model == mpm::MaterialModel::neo_hookean ? core::Setting::plane_strain : core::Setting::plane_stress;
         const auto [d2, a2] = rigid_rotation<2>(set2, shape, scheme, model, pre);
-        const auto [d3, a3] = rigid_rotation<3>(mpm::Setting::solid3d, shape, scheme, model, pre);
+        const auto [d3, a3] = rigid_rotation<3>(core::Setting::solid3d, shape, scheme, model, pre);
         const auto [f2, fa2] = rigid_rotation<2>(set2, shape, scheme, model, 0.0);
-        rows.push_back({std::string(mpm::name(model)), std::string(mpm::name(shape)), std::string(mpm::name(scheme)), d2,
+        rows.push_back({std::string(name(model)), std::string(name(shape)), std::string(name(scheme)), d2,
                         d3, f2});
         worst = std::max({worst, d2, d3});
         worst_free = std::max(worst_free, f2);

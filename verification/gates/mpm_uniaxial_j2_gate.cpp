@@ -31,14 +31,15 @@ namespace mu = test::mpm_util;
 
 const char* kProblem = "mpm_uniaxial_j2";
 const char* kSource = "[simo-hughes1998] bilinear uniaxial law σ_y + E_t(ε − σ_y/E); [noorian] dog-bone material";
-const mpm::Material kSteel{mpm::MaterialModel::j2, 215e9, 0.33, 7800.0, 340e6, 1.45e9};
+const mpm::Material kSteel{mpm::MaterialModel::j2, {215e9, 0.33, 7800.0}, {340e6, 1.45e9}};
 
 // Exact uniaxial response to a strain path with linear isotropic hardening, built
 // from the bilinear branches (not from a return map): elastic slope E between ±κ,
 // plastic slope E_t along |σ| = κ(α), κ = σ_y + H α.
 struct BilinearExact {
   double E, Et, H, sigma = 0.0, eps = 0.0, alpha = 0.0, sy;
-  explicit BilinearExact(const mpm::Material& m) : E(m.E), Et(m.tangent_modulus), H(m.hardening_modulus()), sy(m.yield_stress) {}
+  explicit BilinearExact(const mpm::Material& m)
+      : E(m.elastic.E), Et(m.j2.tangent_modulus), H(m.j2.hardening_modulus(m.elastic.E)), sy(m.j2.yield_stress) {}
   // Advance to strain e (monotone within the call).
   void go_to(double e) {
     const double de = e - eps, dir = de > 0 ? 1.0 : -1.0;
@@ -62,7 +63,7 @@ struct UniaxialDriver {
   mpm::Constitutive<D> law;
   mpm::PointHistory history;
   double lateral = 0.0;  // current lateral log strain (ε₂₂, = ε₃₃ in 3D)
-  UniaxialDriver(const mpm::Material& m, mpm::Setting s) : law(m, s) {}
+  UniaxialDriver(const mpm::Material& m, core::Setting s) : law(m, s) {}
 
   Mat<D> F_of(double e11, double elat) const {
     Mat<D> F = Mat<D>::Identity();
@@ -78,9 +79,9 @@ struct UniaxialDriver {
   mpm::StressResult step(double e11) {
     if constexpr (D > 1) {
       // Secant iteration from the last lateral strain and an elastic guess.
-      double x0 = lateral, x1 = lateral - law.material().nu * 1e-6;
+      double x0 = lateral, x1 = lateral - law.material().elastic.nu * 1e-6;
       double f0 = lateral_stress(e11, x0), f1 = lateral_stress(e11, x1);
-      for (int it = 0; it < 100 && std::abs(f1) > 1e-15 * law.material().yield_stress && f1 != f0; ++it) {
+      for (int it = 0; it < 100 && std::abs(f1) > 1e-15 * law.material().j2.yield_stress && f1 != f0; ++it) {
         const double x2 = x1 - f1 * (x1 - x0) / (f1 - f0);
         x0 = x1;
         f0 = f1;
@@ -96,10 +97,10 @@ struct UniaxialDriver {
 };
 
 template <int D>
-void monotone_curve(mpm::Setting setting, const std::string& tag, double& worst_stress, double& worst_lateral,
+void monotone_curve(core::Setting setting, const std::string& tag, double& worst_stress, double& worst_lateral,
                     nlohmann::json* plot) {
   UniaxialDriver<D> drv(kSteel, setting);
-  const double E = kSteel.E, sy = kSteel.yield_stress, Et = kSteel.tangent_modulus;
+  const double E = kSteel.elastic.E, sy = kSteel.j2.yield_stress, Et = kSteel.j2.tangent_modulus;
   std::vector<double> es, ss, exact;
   for (int n = 1; n <= 500; ++n) {
     const double e = 0.05 * n / 500.0;
@@ -107,10 +108,10 @@ void monotone_curve(mpm::Setting setting, const std::string& tag, double& worst_
     const double s = r.kirchhoff(0, 0);
     const double s_exact = e <= sy / E ? E * e : sy + Et * (e - sy / E);
     const double ep = e - s_exact / E;
-    const double lat_exact = -kSteel.nu * s_exact / E - 0.5 * ep;
+    const double lat_exact = -kSteel.elastic.nu * s_exact / E - 0.5 * ep;
     worst_stress = std::max(worst_stress, std::abs(s - s_exact) / std::abs(s_exact));
     worst_lateral = std::max(worst_lateral, std::abs(drv.lateral - lat_exact) / std::abs(lat_exact));
-    if (setting == mpm::Setting::plane_stress) {
+    if (setting == core::Setting::plane_stress) {
       // Plane stress also reports ε₃₃, which must equal the lateral strain in uniaxial stress.
       worst_lateral = std::max(worst_lateral, std::abs(r.out_of_plane_strain - lat_exact) / std::abs(lat_exact));
     }
@@ -127,10 +128,10 @@ void monotone_curve(mpm::Setting setting, const std::string& tag, double& worst_
 TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
   double ws = 0.0, wl = 0.0;
   nlohmann::json plot = nlohmann::json::array();
-  monotone_curve<2>(mpm::Setting::plane_stress, "plane stress", ws, wl, &plot);
+  monotone_curve<2>(core::Setting::plane_stress, "plane stress", ws, wl, &plot);
   const double ws_ps = ws, wl_ps = wl;
-  monotone_curve<3>(mpm::Setting::solid3d, "3D", ws, wl, nullptr);
-  monotone_curve<1>(mpm::Setting::bar1d, "1D bar", ws, wl, nullptr);
+  monotone_curve<3>(core::Setting::solid3d, "3D", ws, wl, nullptr);
+  monotone_curve<1>(core::Setting::bar1d, "1D bar", ws, wl, nullptr);
   std::cout << "plane stress: stress " << ws_ps << " lateral " << wl_ps << "; all: " << ws << " " << wl << "\n";
   test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.stress",
                          .claim = "a J2 material point in uniaxial stress (plane-stress, 3D and 1D return maps) shall follow "
@@ -156,7 +157,7 @@ TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
 }
 
 TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
-  UniaxialDriver<2> drv(kSteel, mpm::Setting::plane_stress);
+  UniaxialDriver<2> drv(kSteel, core::Setting::plane_stress);
   BilinearExact exact(kSteel);
   // ε path: 0 → +1 % → −1 % → +1 % → −1 % → +1 % → −1 %, 400 increments per leg.
   std::vector<double> targets = {0.01, -0.01, 0.01, -0.01, 0.01, -0.01};
@@ -168,7 +169,7 @@ TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
       e = start + (target - start) * n / 400.0;
       const double s = drv.step(e).kirchhoff(0, 0);
       exact.go_to(e);
-      worst = std::max(worst, std::abs(s - exact.sigma) / kSteel.yield_stress);
+      worst = std::max(worst, std::abs(s - exact.sigma) / kSteel.j2.yield_stress);
       es.push_back(e);
       ss.push_back(s / 1e6);
       xs.push_back(exact.sigma / 1e6);
@@ -209,11 +210,11 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
   const double L = 20e-3, W = 10e-3, thickness = 3e-3, dx = 0.5e-3;
   auto particles = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(L, W), dx, thickness);
   mpm::Settings<2> s;
-  s.setting = mpm::Setting::plane_stress;
+  s.setting = core::Setting::plane_stress;
   s.shape = mpm::ShapeFunction::gimp;
   s.scheme = mpm::UpdateScheme::musl;
   s.material = kSteel;
-  const double c = std::sqrt(kSteel.wave_modulus(mpm::Setting::plane_stress) / kSteel.rho);
+  const double c = std::sqrt(kSteel.elastic.wave_modulus(core::Setting::plane_stress) / kSteel.elastic.rho);
   const double transit = L / c, t_end = 220 * transit, eps_end = 0.02;
   const double V = eps_end * L / (t_end - 10 * transit);  // ramp: average speed over the run ≈ V
   for (int axis : {0, 1}) {
@@ -236,7 +237,7 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
   const int nsteps = static_cast<int>(std::ceil(t_end / dt));
   std::vector<double> es, ss, rs, xs;
   double worst = 0.0, worst_reaction = 0.0, worst_lateral = 0.0;
-  const double E = kSteel.E, sy = kSteel.yield_stress, Et = kSteel.tangent_modulus;
+  const double E = kSteel.elastic.E, sy = kSteel.j2.yield_stress, Et = kSteel.j2.tangent_modulus;
   auto bilinear = [&](double e) { return e <= sy / E ? E * e : sy + Et * (e - sy / E); };
   for (int n = 0; n < nsteps; ++n) {
     sim.step(t_end / nsteps);
@@ -258,7 +259,7 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
       // Reaction: nominal stress τ / λ₁ (λ₁ = eᵉ), times the lateral stretches' area change.
       worst_reaction = std::max(worst_reaction, std::abs(reaction - tau * std::exp(-e)) / sy);
       const double ep = e - s_exact / E;
-      worst_lateral = std::max(worst_lateral, std::abs(lat - (-kSteel.nu * s_exact / E - 0.5 * ep)) / std::abs(e));
+      worst_lateral = std::max(worst_lateral, std::abs(lat - (-kSteel.elastic.nu * s_exact / E - 0.5 * ep)) / std::abs(e));
     }
     es.push_back(e);
     ss.push_back(tau / 1e6);

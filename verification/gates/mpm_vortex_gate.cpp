@@ -69,14 +69,14 @@ VortexResult run_vortex(int cells_per_unit, mpm::ShapeFunction shape, mpm::GimpD
   auto particles = core::fill_lattice<2>(geo, lat, dx * dx);
   for (auto& k : particles.kind) k = core::ParticleKind::mpm;
   mpm::Settings<2> s;
-  s.setting = mpm::Setting::plane_strain;
+  s.setting = core::Setting::plane_strain;
   s.cell_size = h;
   s.shape = shape;
   s.gimp_domain = domain;
   s.scheme = mpm::UpdateScheme::musl;
-  s.material = {mpm::MaterialModel::neo_hookean, kE, kNu, kRho};
+  s.material = {mpm::MaterialModel::neo_hookean, {kE, kNu, kRho}};
   s.flip = flip;
-  const double mu_rho = s.material.shear() / kRho;
+  const double mu_rho = s.material.elastic.shear() / kRho;
   s.body_acceleration = [=](const Vec<2>& X, double t) {
     const double R = X.norm(), Theta = std::atan2(X[1], X[0]);
     const double a = kA * g(R) * ht(t), a1 = kA * dg(R) * ht(t), a2 = kA * d2g(R) * ht(t);
@@ -89,7 +89,7 @@ VortexResult run_vortex(int cells_per_unit, mpm::ShapeFunction shape, mpm::GimpD
   s.padding_cells = 3;
   mpm::Simulation<2> sim(s, particles);
   // Step from the largest speed of the exact motion (R α̇ ≤ 1.25 A π) plus the wave speed.
-  const double c = std::sqrt(s.material.wave_modulus(s.setting) / kRho) + kRo * kA * M_PI;
+  const double c = std::sqrt(s.material.elastic.wave_modulus(s.setting) / kRho) + kRo * kA * M_PI;
   const int nsteps = static_cast<int>(std::ceil(1.0 / (cfl * h / c)));
   VortexResult r;
   double vol = 0.0;

@@ -29,7 +29,7 @@ namespace pdmpm {
 namespace {
 
 using nlohmann::json;
-using pd::Setting;
+using core::Setting;
 using test::PatchBlock;
 using test::PatchConfig;
 
@@ -40,7 +40,7 @@ std::string str(std::string_view v) { return std::string(v); }
 
 // The material of each model in each setting: a pair potential's ν is fixed by
 // the Cauchy relation (¼, plane stress ⅓); other models take ν = 0.3.
-pd::Elastic material_for(const std::string& model, Setting s) {
+core::Elastic material_for(const std::string& model, core::Setting s) {
   return {200e9, pd::model_info(model).fixed_poisson(s).value_or(0.3), 7850.0};
 }
 
@@ -88,9 +88,9 @@ std::vector<std::pair<std::string, Eigen::Matrix3d>> rotations() {
 json num(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 template <int D>
-void patch_suite(const std::string& model, Setting setting) {
-  const std::string tag = model + "." + str(pd::name(setting));
-  const std::string where = "model " + model + ", setting " + str(pd::name(setting));
+void patch_suite(const std::string& model, core::Setting setting) {
+  const std::string tag = model + "." + str(name(setting));
+  const std::string where = "model " + model + ", setting " + str(name(setting));
   double worst_force = 0.0, worst_rotation = 0.0, worst_theta = 0.0, worst_mismatch = 0.0;
   double worst_iso = 0.0, worst_dev_excess = -1.0, dev_bound_at_worst = 0.0, worst_dev = 0.0;
   std::string at_force, at_rotation, at_theta, at_mismatch, at_iso, at_dev;
@@ -106,7 +106,7 @@ void patch_suite(const std::string& model, Setting setting) {
     cfg.material = material_for(model, setting);
     PatchBlock<D> block(cfg);
     const double bound = block.deviatoric_bound();
-    const std::string wn = str(pd::name(w));
+    const std::string wn = str(name(w));
     double pmb_iso_error = test::not_measured, dev_worst_here = 0.0;
 
     for (const auto& f : fields<D>()) {
@@ -236,14 +236,14 @@ void patch_suite(const std::string& model, Setting setting) {
 }
 
 template <int D>
-void all_models(Setting s) {
+void all_models(core::Setting s) {
   for (const auto& model : pd::model_names()) patch_suite<D>(model, s);
 }
 
-TEST(FastPatch, Bar1d) { all_models<1>(Setting::bar1d); }
-TEST(FastPatch, PlaneStress) { all_models<2>(Setting::plane_stress); }
-TEST(FastPatch, PlaneStrain) { all_models<2>(Setting::plane_strain); }
-TEST(FastPatch, Solid3d) { all_models<3>(Setting::solid3d); }
+TEST(FastPatch, Bar1d) { all_models<1>(core::Setting::bar1d); }
+TEST(FastPatch, PlaneStress) { all_models<2>(core::Setting::plane_stress); }
+TEST(FastPatch, PlaneStrain) { all_models<2>(core::Setting::plane_strain); }
+TEST(FastPatch, Solid3d) { all_models<3>(core::Setting::solid3d); }
 
 }  // namespace
 }  // namespace pdmpm

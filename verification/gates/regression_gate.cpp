@@ -51,11 +51,11 @@ TEST(FastRegression, ForcesMatchGold) {
   json rows = json::array();
   int missing = 0;
   for (const auto& c : regression::cases()) {
-    const std::string tag = c.model + "." + std::string(pd::name(c.setting));
+    const std::string tag = c.model + "." + std::string(name(c.setting));
     auto& w = worst[tag];
     if (!file.exists(c.group() + "/force")) {
       ++missing;
-      w = {std::numeric_limits<double>::infinity(), std::string(pd::name(c.influence)) + " missing from the gold"};
+      w = {std::numeric_limits<double>::infinity(), std::string(name(c.influence)) + " missing from the gold"};
       continue;
     }
     const auto r = regression::compute(c);
@@ -64,8 +64,8 @@ TEST(FastRegression, ForcesMatchGold) {
     const auto th = file.dataset(c.group() + "/dilatation");
     const double df = rel_diff(r.force, f.values), dW = rel_diff(r.energy, W.values), dt = rel_diff(r.dilatation, th.values);
     const double d = std::max({df, dW, dt});
-    if (d >= w.first) w = {d, std::string(pd::name(c.influence))};
-    rows.push_back({c.model, std::string(pd::name(c.setting)), std::string(pd::name(c.influence)), r.particles,
+    if (d >= w.first) w = {d, std::string(name(c.influence))};
+    rows.push_back({c.model, std::string(name(c.setting)), std::string(name(c.influence)), r.particles,
                     r.broken_bond_sides, max_abs(f.values), df, dW, dt});
   }
   for (const auto& [tag, w] : worst) {
@@ -133,11 +133,11 @@ TEST(FastRegression, PaperNumbersCarrySourcesAndReproduceTable42) {
   const double E = 200e9, nu = 0.25, delta = 3.015e-3;
   double worst = 0.0;
   for (pd::Influence w : pd::all_influences) {
-    const std::string p = "/seed001_table42/" + std::string(pd::name(w));
+    const std::string p = "/seed001_table42/" + std::string(name(w));
     if (w == pd::Influence::inverse_distance) continue;  // not in the table
     const double k = file.exists(p) ? file.scalar(p) : 0.0;
     const double printed = k * E / ((1.0 - 2.0 * nu) * std::numbers::pi * std::pow(delta, 4));
-    const double ours = pd::pmb_micromodulus(w, pd::Setting::solid3d, {E, nu, 7850.0}, delta, 1.0);
+    const double ours = pd::pmb_micromodulus(w, core::Setting::solid3d, {E, nu, 7850.0}, delta, 1.0);
     worst = std::max(worst, std::abs(printed / ours - 1.0));
   }
   test::record_gate({.id = "reference_data.seed001_table42",

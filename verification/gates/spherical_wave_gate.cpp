@@ -79,7 +79,7 @@ TEST(FastSphericalWave, ClosedFormMatchesOdeIntegration) {
   for (double nu : {0.25, 0.33}) {
     io::Scene s;
     s.material = {youngs, nu, density};
-    s.setting = pd::Setting::solid3d;
+    s.setting = core::Setting::solid3d;
     OdeParams prm{exact_wave(s)};
     const auto& w = prm.w;
     gsl_odeiv2_system sys{rhs, nullptr, 1, &prm};
@@ -473,14 +473,14 @@ TEST(FullSphericalWave, SourcePartialVolumeAndDispersion) {
         cfg.spacing = paper_spacing(rd);
         cfg.extent = 0.21;
         const auto res = run(c, cfg);
-        const std::string key = std::string(name(src)) + "/" + std::string(pd::name(pv));
+        const std::string key = std::string(name(src)) + "/" + std::string(name(pv));
         m[key] = res.metrics.back();
-        dts[std::string(pd::name(pv))] = res.dt;
+        dts[std::string(name(pv))] = res.dt;
       }
       source_rows.push_back({name(rd), c.label, m["layer/seed001"].l2, m["points/seed001"].l2, m["layer/seed001"].max, m["points/seed001"].max});
       if (rd == Reading::cube) continue;
       for (auto pv : {pd::PartialVolume::seed001, pd::PartialVolume::extended}) {
-        const std::string pvn(pd::name(pv));
+        const std::string pvn(name(pv));
         const double dt = dts[pvn], dx = paper_spacing(rd);
         const auto along = dispersion(c, dx, paper_ratio, pv, dt, t_compare);
         const auto diag = dispersion(c, dx, paper_ratio, pv, dt, t_compare, Vec<3>(1, 1, 1));

@@ -46,6 +46,7 @@ constexpr long paper_particles = 531414;  // 81³ − 27
 enum class Reading { octant, cube };
 enum class Source { layer, points };
 
+using pdmpm::name;  // the name tables of pd enums, beside the two below
 inline const char* name(Reading r) { return r == Reading::octant ? "octant" : "cube"; }
 inline const char* name(Source s) { return s == Source::layer ? "layer" : "points"; }
 // Paper resolution of each reading (81 sites across).
@@ -56,7 +57,7 @@ struct Case {
   std::string model;  // "pmb" | "lps"
   pd::Influence influence = pd::Influence::constant;
   double nu = 0.25;
-  std::string key() const { return model + "_" + std::string(pd::name(influence)); }
+  std::string key() const { return model + "_" + std::string(name(influence)); }
 };
 
 // The eight cases of Deryugin et al. 2023 §9: PMB (ν = 1/4) with the six ω of table 4.1,
@@ -66,7 +67,7 @@ inline std::vector<Case> paper_cases() {
   std::vector<Case> c;
   for (auto w : {Influence::constant, Influence::triangular, Influence::quadratic, Influence::semi_elliptical,
                  Influence::exponential, Influence::gaussian})
-    c.push_back({"PMB " + std::string(pd::name(w)), "pmb", w, 0.25});
+    c.push_back({"PMB " + std::string(name(w)), "pmb", w, 0.25});
   c.push_back({"LPS ω = 1", "lps", Influence::constant, 0.33});
   c.push_back({"LPS ω = 1/r", "lps", Influence::inverse_distance, 0.33});
   return c;
@@ -181,7 +182,7 @@ inline analytic::SphericalWave exact_wave(const io::Scene& s) {
   w.r0 = r0;
   w.period = period;
   w.amplitude = amplitude;
-  w.cp = std::sqrt(s.material.longitudinal_modulus(s.setting) / s.material.rho);
+  w.cp = std::sqrt(s.material.wave_modulus(s.setting) / s.material.rho);
   return w;
 }
 
@@ -199,7 +200,7 @@ inline double stable_step(const Case& c, Config cfg) {
   // Cached per configuration within a process (several runs share one).
   static std::map<std::string, double> cache;
   const std::string key = c.key() + "/" + std::to_string(cfg.spacing) + "/" + std::to_string(cfg.ratio) + "/" +
-                          std::string(pd::name(cfg.partial_volume));
+                          std::string(name(cfg.partial_volume));
   if (auto it = cache.find(key); it != cache.end()) return it->second;
   cfg.reading = Reading::cube;
   cfg.extent = std::min(cfg.extent, r0 + 3.0 * cfg.ratio * cfg.spacing);

@@ -33,8 +33,10 @@
 #include "solver/sim/run.hpp"
 #include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
+#include "verification/support/command_line.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/patch_check.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm {
 namespace {
@@ -159,23 +161,6 @@ TEST(FastStability, BoundedAt09Lanczos3d) { bounded_at_09<3>(); }
 // ---------------------------------------------------------------------------
 // Unstable at 1.5 × the estimate: the command line.
 
-struct Cli {
-  int status = -1;
-  std::string output;
-};
-
-Cli run_cli(const std::string& args) {
-  const std::string cmd = std::string(PDMPM_BINARY_DIR) + "/pdmpm " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  Cli r;
-  if (!pipe) return r;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) r.output.append(buf.data(), n);
-  const int rc = pclose(pipe);
-  r.status = WIFEXITED(rc) ? WEXITSTATUS(rc) : -1;
-  return r;
-}
-
 template <int D>
 void unstable_at_15(json& rows) {
   for (const auto& model : pd::model_names()) {
@@ -190,13 +175,10 @@ void unstable_at_15(json& rows) {
     for (const std::string estimate : {"lanczos", "silling_askari"}) {
       const std::string text = loaded_scene(model, D, 200e9, 1e7, 2e-6,
                                             "steps = 400\nsafety_factor = 1.5\nstable_step = \"" + estimate + "\"\n");
-      const fs::path dir = fs::temp_directory_path() / ("pdmpm_stability_" + tag + "_" + estimate);
-      fs::remove_all(dir);
-      fs::create_directories(dir);
-      {
-        std::ofstream(dir / "scene.toml") << text;
-      }
-      const auto r = run_cli("run " + (dir / "scene.toml").string() + " --out " + (dir / "out").string() +
+      const test::ScratchDir scratch("stability_" + tag + "_" + estimate);
+      const fs::path dir = scratch.path();
+      std::ofstream(dir / "scene.toml") << text;
+      const auto r = test::run_pdmpm("run " + (dir / "scene.toml").string() + " --out " + (dir / "out").string() +
                              " --quiet --no-fields --threads 1");
       std::smatch m;
       const std::regex pattern(R"(unstable at step (\d+) .*Time step ([0-9.eE+-]+) s; stable-step estimate ([0-9.eE+-]+) s \((Lanczos|Silling–Askari)\))");
@@ -243,7 +225,6 @@ void unstable_at_15(json& rows) {
       }
       rows.push_back({model, dim_name(D), estimate, dt_sa, dt_l, ratio, r.status,
                       found ? m[1].str() : std::string("—"), found ? printed_estimate : 0.0});
-      fs::remove_all(dir);
     }
   }
 }
@@ -281,23 +262,23 @@ template <int D>
 void lps_patch(const test::PatchConfig& cfg, Worst& force, Worst& rotation, Worst& theta, Worst& iso, Worst& lattice,
                json& rows) {
   test::PatchBlock<D> block(cfg);
-  const std::string where = std::string(pd::name(cfg.setting)) + ", ω = " + std::string(pd::name(cfg.influence)) +
+  const std::string where = std::string(name(cfg.setting)) + ", ω = " + std::string(name(cfg.influence)) +
                             ", ν = " + g17(cfg.material.nu) + ", m = " + g17(cfg.horizon_ratio);
   Eigen::Matrix3d mixed;
   mixed << 1.0, 0.4, -0.3, -0.2, -0.7, 0.5, 0.6, 0.1, 0.9;
   const Eigen::Matrix3d iso_H = Eigen::Matrix3d::Identity();
   for (double a : {1e-7, 0.3}) {
-    for (const auto& [name, H] : {std::pair<std::string, Eigen::Matrix3d>{"isotropic", iso_H}, {"mixed", mixed}}) {
-      if (D == 1 && name == "mixed") continue;
+    for (const auto& [field, H] : {std::pair<std::string, Eigen::Matrix3d>{"isotropic", iso_H}, {"mixed", mixed}}) {
+      if (D == 1 && field == "mixed") continue;
       const auto r = block.affine(a * H, a < 1e-3);
-      force.take(r.interior_force, where + ", " + name);
+      force.take(r.interior_force, where + ", " + field);
       if (a < 1e-3) {
-        theta.take(r.theta_error, where + ", " + name);
-        lattice.take(r.prediction_mismatch, where + ", " + name);
-        if (name == "isotropic") iso.take(std::abs(r.energy_error), where);
+        theta.take(r.theta_error, where + ", " + field);
+        lattice.take(r.prediction_mismatch, where + ", " + field);
+        if (field == "isotropic") iso.take(std::abs(r.energy_error), where);
       }
-      rows.push_back({std::string(pd::name(cfg.setting)), std::string(pd::name(cfg.influence)), cfg.material.nu,
-                      cfg.horizon_ratio, name, a, r.interior, r.interior_force, a < 1e-3 ? json(r.theta_error) : json(nullptr),
+      rows.push_back({std::string(name(cfg.setting)), std::string(name(cfg.influence)), cfg.material.nu,
+                      cfg.horizon_ratio, field, a, r.interior, r.interior_force, a < 1e-3 ? json(r.theta_error) : json(nullptr),
                       a < 1e-3 ? json(r.energy_error) : json(nullptr)});
     }
   }
@@ -351,11 +332,11 @@ TEST(FastStability, LpsPatchAtExtremePoissonRatios) {
       cfg.model = "lps";
       cfg.influence = w;
       cfg.material = {200e9, nu, 7850.0};
-      cfg.setting = pd::Setting::plane_stress;
+      cfg.setting = core::Setting::plane_stress;
       lps_patch<2>(cfg, force, rotation, theta, iso, lattice, rows);
-      cfg.setting = pd::Setting::plane_strain;
+      cfg.setting = core::Setting::plane_strain;
       lps_patch<2>(cfg, force, rotation, theta, iso, lattice, rows);
-      cfg.setting = pd::Setting::solid3d;
+      cfg.setting = core::Setting::solid3d;
       lps_patch<3>(cfg, force, rotation, theta, iso, lattice, rows);
     }
     char tag[32];
@@ -374,7 +355,7 @@ TEST(FastStability, LpsPatchAtExtremePoissonRatios) {
 }
 
 template <int D>
-void lps_horizon(double m, pd::Setting s, json& rows, Worst& force, Worst& rotation, Worst& theta, Worst& iso,
+void lps_horizon(double m, core::Setting s, json& rows, Worst& force, Worst& rotation, Worst& theta, Worst& iso,
                  Worst& lattice, bool ball) {
   for (pd::Influence w : {pd::Influence::constant, pd::Influence::quadratic, pd::Influence::inverse_distance}) {
     test::PatchConfig cfg;
@@ -392,18 +373,18 @@ TEST(FastStability, LpsPatchAtSmallAndLargeHorizon) {
   json rows = json::array();
   {
     Worst force, rotation, theta, iso, lattice;
-    lps_horizon<1>(1.5, pd::Setting::bar1d, rows, force, rotation, theta, iso, lattice, false);
-    lps_horizon<2>(1.5, pd::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
-    lps_horizon<2>(1.5, pd::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
-    lps_horizon<3>(1.5, pd::Setting::solid3d, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<1>(1.5, core::Setting::bar1d, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<2>(1.5, core::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<2>(1.5, core::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<3>(1.5, core::Setting::solid3d, rows, force, rotation, theta, iso, lattice, false);
     record_lps_extreme("lps_horizon_m1.5", "m = 1.5 (1D, plane stress, plane strain, 3D; ω = 1, quadratic, δ/r)",
                        force, rotation, theta, iso, lattice);
   }
   {
     Worst force, rotation, theta, iso, lattice;
-    lps_horizon<1>(8.0, pd::Setting::bar1d, rows, force, rotation, theta, iso, lattice, false);
-    lps_horizon<2>(8.0, pd::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
-    lps_horizon<2>(8.0, pd::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<1>(8.0, core::Setting::bar1d, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<2>(8.0, core::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
+    lps_horizon<2>(8.0, core::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
     record_lps_extreme("lps_horizon_m8", "m = 8 (1D, plane stress, plane strain; ω = 1, quadratic, δ/r; 3D in the "
                        "full tier)", force, rotation, theta, iso, lattice);
   }
@@ -420,7 +401,7 @@ TEST(FastStability, LpsPatchAtSmallAndLargeHorizon) {
 TEST(FullStability, LpsPatchAtLargeHorizon3d) {
   json rows = json::array();
   Worst force, rotation, theta, iso, lattice;
-  lps_horizon<3>(8.0, pd::Setting::solid3d, rows, force, rotation, theta, iso, lattice, true);
+  lps_horizon<3>(8.0, core::Setting::solid3d, rows, force, rotation, theta, iso, lattice, true);
   record_lps_extreme("lps_horizon_m8_3d", "m = 8 in 3D (ball of radius 2δ + 2Δx; ω = 1, quadratic, δ/r)", force,
                      rotation, theta, iso, lattice);
   test::record_data("stability", "lps_horizon_3d",
@@ -437,7 +418,7 @@ TEST(FullStability, LpsPatchAtLargeHorizon3d) {
 // Degenerate bodies.
 
 template <int D>
-pd::System<D> lattice_body(const std::vector<IVec<D>>& sites, const std::string& model, pd::Setting s) {
+pd::System<D> lattice_body(const std::vector<IVec<D>>& sites, const std::string& model, core::Setting s) {
   pd::System<D> sys;
   sys.particles.lattice.spacing = 1e-3;
   const double measure = test::default_measure(s);
@@ -461,7 +442,7 @@ bool all_finite(const pd::System<D>& sys, const std::vector<double>& W, const st
 // Two particles Δx apart along x, stretched by a: the relative coordinate
 // oscillates with ω² = 2cV/(ρΔx) (PMB: f = c V s) or 4(A d + B)V ω... see below.
 template <int D>
-void two_particles(const std::string& model, pd::Setting s, json& rows, double& worst_freq, double& worst_lanczos,
+void two_particles(const std::string& model, core::Setting s, json& rows, double& worst_freq, double& worst_lanczos,
                    bool& finite) {
   IVec<D> a = IVec<D>::Zero(), b = IVec<D>::Zero();
   b[0] = 1;
@@ -506,7 +487,7 @@ void two_particles(const std::string& model, pd::Setting s, json& rows, double& 
   const double df = std::abs(omega2_measured / omega2 - 1.0), dl = std::abs(lz.lambda_max / omega2 - 1.0);
   worst_freq = std::max(worst_freq, df);
   worst_lanczos = std::max(worst_lanczos, dl);
-  rows.push_back({model, std::string(pd::name(s)), omega2, omega2_measured, df, lz.lambda_max, dl});
+  rows.push_back({model, std::string(name(s)), omega2, omega2_measured, df, lz.lambda_max, dl});
 }
 
 TEST(FastStability, DegenerateBodies) {
@@ -515,7 +496,7 @@ TEST(FastStability, DegenerateBodies) {
   bool single_ok = true;
   std::string single_notes;
   for (const auto& model : pd::model_names()) {
-    auto sys = lattice_body<3>({IVec<3>::Zero()}, model, pd::Setting::solid3d);
+    auto sys = lattice_body<3>({IVec<3>::Zero()}, model, core::Setting::solid3d);
     auto m = pd::make_model<3>(model);
     m->initialise(sys);
     sys.particles.u[0] = Vec<3>(1e-6, 2e-6, 0);
@@ -567,10 +548,10 @@ TEST(FastStability, DegenerateBodies) {
   bool finite = true;
   for (const auto& model : pd::model_names()) {
     if (model != "pmb" && model != "lps") continue;  // closed forms below are per model
-    two_particles<1>(model, pd::Setting::bar1d, pair_rows, worst_freq, worst_lanczos, finite);
-    two_particles<2>(model, pd::Setting::plane_stress, pair_rows, worst_freq, worst_lanczos, finite);
-    two_particles<2>(model, pd::Setting::plane_strain, pair_rows, worst_freq, worst_lanczos, finite);
-    two_particles<3>(model, pd::Setting::solid3d, pair_rows, worst_freq, worst_lanczos, finite);
+    two_particles<1>(model, core::Setting::bar1d, pair_rows, worst_freq, worst_lanczos, finite);
+    two_particles<2>(model, core::Setting::plane_stress, pair_rows, worst_freq, worst_lanczos, finite);
+    two_particles<2>(model, core::Setting::plane_strain, pair_rows, worst_freq, worst_lanczos, finite);
+    two_particles<3>(model, core::Setting::solid3d, pair_rows, worst_freq, worst_lanczos, finite);
   }
   EXPECT_TRUE(finite);
   test::record_gate({.id = "stability.degenerate.two_particles_frequency",
@@ -595,7 +576,7 @@ TEST(FastStability, DegenerateBodies) {
   for (const auto& model : pd::model_names()) {
     test::PatchConfig cfg;
     cfg.model = model;
-    cfg.setting = pd::Setting::plane_strain;
+    cfg.setting = core::Setting::plane_strain;
     cfg.material = {200e9, pd::model_info(model).fixed_poisson(cfg.setting).value_or(0.3), 7850.0};
     std::vector<IVec<2>> sites;
     for (int x = 0; x < 12; ++x)

@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "solver/core/error.hpp"
+#include "verification/support/command_line.hpp"
 #include "verification/support/provenance.hpp"
 
 namespace pdmpm::test::gold {
@@ -24,14 +25,8 @@ Handle string_type() {
 
 // First line of a shell command's output ("" on failure).
 std::string first_line(const std::string& cmd) {
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return "";
-  std::array<char, 512> buf{};
-  std::string out;
-  if (fgets(buf.data(), buf.size(), pipe)) out = buf.data();
-  const int rc = pclose(pipe);
-  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
-  return rc == 0 ? out : "";
+  const CommandResult r = run_command(cmd);
+  return r.status == 0 ? r.output.substr(0, r.output.find_first_of("\r\n")) : "";
 }
 
 Handle open_object(hid_t file, const std::string& path) {

@@ -11,22 +11,22 @@ namespace pdmpm::test {
 
 double interior_margin(const std::string& model, double delta) { return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta; }
 
-double default_measure(pd::Setting s) {
+double default_measure(core::Setting s) {
   switch (s) {
-    case pd::Setting::bar1d: return 1e-6;
-    case pd::Setting::plane_stress:
-    case pd::Setting::plane_strain: return 1e-3;
-    case pd::Setting::solid3d: return 1.0;
+    case core::Setting::bar1d: return 1e-6;
+    case core::Setting::plane_stress:
+    case core::Setting::plane_strain: return 1e-3;
+    case core::Setting::solid3d: return 1.0;
   }
   return 1.0;
 }
 
-double classical_energy(const Eigen::Matrix3d& eps, int dim, pd::Setting s, const pd::Elastic& m) {
+double classical_energy(const Eigen::Matrix3d& eps, int dim, core::Setting s, const core::Elastic& m) {
   const Eigen::MatrixXd e = eps.topLeftCorner(dim, dim);
-  if (s == pd::Setting::bar1d) return 0.5 * m.E * e(0, 0) * e(0, 0);
+  if (s == core::Setting::bar1d) return 0.5 * m.E * e(0, 0) * e(0, 0);
   const double G = m.shear();
   // Plane stress eliminates ε_zz: λ* = 2Gν/(1−ν) = Eν/(1−ν²).
-  const double lambda = s == pd::Setting::plane_stress ? m.E * m.nu / (1.0 - m.nu * m.nu) : m.lame();
+  const double lambda = s == core::Setting::plane_stress ? m.E * m.nu / (1.0 - m.nu * m.nu) : m.lame();
   const double tr = e.trace();
   return 0.5 * lambda * tr * tr + G * e.cwiseProduct(e).sum();
 }
@@ -195,7 +195,7 @@ PatchResult PatchBlock<D>::affine(const Eigen::Matrix3d& H, bool small) {
   PatchResult r;
   r.interior = static_cast<int>(interior_.size());
   const double hmax = H.topLeftCorner<D, D>().cwiseAbs().maxCoeff();
-  r.force_scale = sys_.material.longitudinal_modulus(sys_.setting) * hmax / sys_.spacing();
+  r.force_scale = sys_.material.wave_modulus(sys_.setting) * hmax / sys_.spacing();
   std::vector<double> W, theta;
   evaluate(H, W, theta);
   const auto& f = sys_.particles.f;

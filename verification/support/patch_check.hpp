@@ -21,11 +21,11 @@ namespace pdmpm::test {
 
 struct PatchConfig {
   std::string model = "pmb";
-  pd::Setting setting = pd::Setting::solid3d;
+  core::Setting setting = core::Setting::solid3d;
   pd::Influence influence = pd::Influence::constant;
   pd::PartialVolume partial_volume = pd::PartialVolume::seed001;
   double horizon_ratio = 3.015;
-  pd::Elastic material{200e9, 0.25, 7850.0};
+  core::Elastic material{200e9, 0.25, 7850.0};
   double spacing = 1e-3;
   // Body: a cube of lattice sites (default) or, for large horizons in 3D, a ball
   // just large enough to hold one interior particle at its centre.
@@ -38,10 +38,10 @@ struct PatchConfig {
 double interior_margin(const std::string& model, double delta);
 
 // Thickness (2D) / area (1D) used by the gates: h = 1 mm, A = 1 mm².
-double default_measure(pd::Setting s);
+double default_measure(core::Setting s);
 
 // Classical small-strain energy density ½ ε:C:ε of the setting (ε symmetric, D×D).
-double classical_energy(const Eigen::Matrix3d& eps, int dim, pd::Setting s, const pd::Elastic& m);
+double classical_energy(const Eigen::Matrix3d& eps, int dim, core::Setting s, const core::Elastic& m);
 
 constexpr double not_measured = std::numeric_limits<double>::quiet_NaN();
 

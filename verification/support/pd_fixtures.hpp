@@ -12,10 +12,10 @@ struct BlockSpec {
   int sites = 12;                 // lattice sites per side
   double spacing = 1e-3;          // Δx
   double horizon_ratio = 3.015;   // m = δ / Δx
-  pd::Setting setting = pd::Setting::solid3d;
+  core::Setting setting = core::Setting::solid3d;
   pd::Influence influence = pd::Influence::constant;
   pd::PartialVolume partial_volume = pd::PartialVolume::seed001;
-  pd::Elastic material{200e9, 0.25, 7850.0};
+  core::Elastic material{200e9, 0.25, 7850.0};
   double measure = 1.0;           // thickness (2D) / area (1D); 1 in 3D
 };
 

@@ -1,5 +1,6 @@
 #include "verification/support/provenance.hpp"
 #include "solver/core/build_info.hpp"
+#include "verification/support/command_line.hpp"
 
 #include <omp.h>
 
@@ -23,15 +24,9 @@ std::string cpu_model() {
 
 // "dirty" if the source tree has uncommitted changes, "clean" if not, "unknown" without git.
 std::string tree_state() {
-  const std::string cmd = std::string("git -C '") + PDMPM_SOURCE_DIR + "' status --porcelain 2>/dev/null";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  if (!pipe) return "unknown";
-  std::array<char, 256> buf{};
-  bool any = false;
-  while (fgets(buf.data(), buf.size(), pipe)) any = true;
-  const int rc = pclose(pipe);
-  if (rc != 0) return "unknown";
-  return any ? "dirty" : "clean";
+  const CommandResult r = run_command(std::string("git -C '") + PDMPM_SOURCE_DIR + "' status --porcelain 2>/dev/null");
+  if (r.status != 0) return "unknown";
+  return r.output.empty() ? "clean" : "dirty";
 }
 
 }  // namespace

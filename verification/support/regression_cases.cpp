@@ -9,13 +9,13 @@
 namespace pdmpm::test::regression {
 
 std::string Case::group() const {
-  return "/" + model + "/" + std::string(pd::name(setting)) + "/" + std::string(pd::name(influence));
+  return "/" + model + "/" + std::string(name(setting)) + "/" + std::string(name(influence));
 }
 
 std::vector<Case> cases() {
   std::vector<Case> out;
   for (const auto& m : pd::model_names())
-    for (pd::Setting s : {pd::Setting::bar1d, pd::Setting::plane_stress, pd::Setting::plane_strain, pd::Setting::solid3d})
+    for (core::Setting s : {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d})
       for (pd::Influence w : pd::all_influences) out.push_back({m, s, w});
   return out;
 }

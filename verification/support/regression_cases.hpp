@@ -8,16 +8,16 @@
 #include <vector>
 
 #include "solver/pd/influence.hpp"
-#include "solver/pd/material.hpp"
+#include "solver/core/material.hpp"
 
 namespace pdmpm::test::regression {
 
 struct Case {
   std::string model;
-  pd::Setting setting = pd::Setting::solid3d;
+  core::Setting setting = core::Setting::solid3d;
   pd::Influence influence = pd::Influence::constant;
   std::string group() const;  // "/pmb/3d/constant"
-  int dimension() const { return pd::dimension(setting); }
+  int dimension() const { return core::dimension(setting); }
 };
 
 // Every registered model × 4 settings × 7 influence functions.

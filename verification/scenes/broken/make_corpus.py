@@ -117,7 +117,7 @@ CASES = {
     "frame_times_and_frames": ("output.frame_times | at most one of frames, every and frame_times", BASE + "\n[output]\nframes = 3\nframe_times = [1e-7]\n"),
     "negative_frame_time": ("output.frame_times | must be ≥ 0", BASE + "\n[output]\nframe_times = [-1e-7]\n"),
     "weighted_volume_for_pmb": ("model.weighted_volume | only for type = \"lps\"", replace('type = "lps"', 'type = "pmb"').replace('influence = "constant"', 'influence = "constant"\nweighted_volume = "continuum"').replace("poissons_ratio = 0.25\n", "")),
-    "unknown_weighted_volume": ("model.weighted_volume | must be \"discrete\"", replace('influence = "constant"', 'influence = "constant"\nweighted_volume = "integral"')),
+    "unknown_weighted_volume": ("model.weighted_volume | must be one of discrete, continuum", replace('influence = "constant"', 'influence = "constant"\nweighted_volume = "integral"')),
     "mpm_precrack": ("precrack[0] | pre-cracks cut PD bonds", MPM_BASE + "\n[[precrack]]\nfrom = [0.0, 0.005]\nto = [0.005, 0.005]\n"),
     "mpm_displacement_boundary": ("boundary[0].kind | constrains grid velocities", mpm('kind = "fixed"', 'kind = "displacement"\nvalue = ["0", "0"]')),
     "mpm_disk_region": ("boundary[0].region | as boxes", mpm('region = { type = "box", min = [0.0, 0.0], max = [0.001, 0.01] }', 'region = { type = "disk", center = [0.0, 0.0], radius = 0.002 }')),

@@ -12,34 +12,19 @@
 #include <string>
 
 #include "solver/pd/model.hpp"
+#include "verification/support/command_line.hpp"
+#include "verification/support/scene_text.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status;
-  std::string output;
-};
-
-Outcome run(const std::string& args) {
-  const std::string cmd = std::string(PDMPM_BINARY_DIR) + "/pdmpm " + args + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  std::array<char, 4096> buf{};
-  while (std::size_t n = fread(buf.data(), 1, buf.size(), pipe)) out.append(buf.data(), n);
-  const int rc = pclose(pipe);
-  return {WIFEXITED(rc) ? WEXITSTATUS(rc) : -1, out};
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path p = fs::temp_directory_path() / ("pdmpm_cli_test_" + name);
-  fs::remove_all(p);
-  return p;
-}
+using pdmpm::test::run_pdmpm;
 
 TEST(Cli, EveryBrokenSceneIsRejectedCleanly) {
   const fs::path corpus = fs::path(PDMPM_SOURCE_DIR) / "verification/scenes/broken";
+  const pdmpm::test::ScratchDir scratch("cli_broken");
   int count = 0;
   for (const auto& entry : fs::directory_iterator(corpus)) {
     if (entry.path().extension() != ".toml") continue;
@@ -53,8 +38,8 @@ TEST(Cli, EveryBrokenSceneIsRejectedCleanly) {
     const std::string key = bar == std::string::npos ? "" : expect.substr(0, bar);
     const std::string fragment = bar == std::string::npos ? expect : expect.substr(bar + 3);
 
-    const fs::path out = scratch(entry.path().stem().string());
-    const auto r = run("run " + entry.path().string() + " --out " + out.string() + " --quiet");
+    const fs::path out = scratch.fresh(entry.path().stem().string());
+    const auto r = run_pdmpm("run " + entry.path().string() + " --out " + out.string() + " --quiet");
     EXPECT_EQ(r.status, 2) << entry.path().filename() << ":\n" << r.output;
     if (!key.empty()) {
       EXPECT_NE(r.output.find("'" + key + "'"), std::string::npos) << entry.path().filename() << ":\n" << r.output;
@@ -63,42 +48,45 @@ TEST(Cli, EveryBrokenSceneIsRejectedCleanly) {
     EXPECT_NE(r.output.find(entry.path().filename().string()), std::string::npos) << "message must name the file";
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line:\n" << r.output;
     EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out)) << "output left behind for " << entry.path().filename();
-    fs::remove_all(out);
   }
   EXPECT_GE(count, 40);
 }
 
 TEST(Cli, MissingSceneFileIsAnInputError) {
-  const auto r = run("run /nonexistent/scene.toml --quiet");
+  const auto r = run_pdmpm("run /nonexistent/scene.toml --quiet");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.output.find("cannot open"), std::string::npos) << r.output;
 }
 
 TEST(Cli, UsageErrorsExitWithTwo) {
-  EXPECT_EQ(run("").status, 2);
-  EXPECT_EQ(run("frobnicate").status, 2);
-  EXPECT_EQ(run("constants --format xml").status, 2);
+  EXPECT_EQ(run_pdmpm("").status, 2);
+  EXPECT_EQ(run_pdmpm("frobnicate").status, 2);
+  EXPECT_EQ(run_pdmpm("constants --format xml").status, 2);
 }
 
 // A tiny scene of each model in 2D and 3D runs and reports bond updates per second.
 TEST(Cli, SmallScenesOfEachModelRun) {
   for (const auto& model : pdmpm::pd::model_names())
     for (int dim : {2, 3}) {
-      std::ostringstream s;
-      s << "[scene]\nid = \"tiny_" << model << dim << "\"\n[discretization]\ndimension = " << dim << "\n";
-      if (dim == 2) s << "plane = \"strain\"\nthickness = 1e-3\n";
-      s << "spacing = 1e-3\nhorizon_ratio = 3.015\n[[shape]]\ntype = \"box\"\n";
-      s << (dim == 2 ? "min = [0, 0]\nmax = [0.012, 0.008]\n" : "min = [0, 0, 0]\nmax = [0.008, 0.006, 0.006]\n");
-      s << "[material]\ndensity = 7850\nyoungs_modulus = 200e9\npoissons_ratio = 0.25\n";
-      s << "[model]\ntype = \"" << model << "\"\n[time]\nsteps = 20\n";
-      s << "[[boundary]]\nkind = \"velocity\"\nvalue = [" << (dim == 2 ? "\"1.0\", \"free\"" : "\"1.0\", \"free\", \"free\"") << "]\n";
-      s << "region = { type = \"box\", min = [" << (dim == 2 ? "0.0115, 0" : "0.0075, 0, 0") << "], max = ["
-        << (dim == 2 ? "0.012, 0.008" : "0.008, 0.006, 0.006") << "] }\n";
-      const fs::path dir = scratch("tiny_" + model + std::to_string(dim));
-      fs::create_directories(dir);
+      const std::string box = dim == 2 ? "0.012, 0.008" : "0.008, 0.006, 0.006";
+      const pdmpm::test::SceneText text{
+          .id = "tiny_" + model + std::to_string(dim),
+          .dimension = dim,
+          .plane = "strain",
+          .min = std::vector<double>(dim, 0.0),
+          .max = dim == 2 ? std::vector<double>{0.012, 0.008} : std::vector<double>{0.008, 0.006, 0.006},
+          .poissons_ratio = "0.25",
+          .model = model,
+          .time = "steps = 20",
+          .tables = "[[boundary]]\nkind = \"velocity\"\nvalue = [" +
+                    std::string(dim == 2 ? "\"1.0\", \"free\"" : "\"1.0\", \"free\", \"free\"") +
+                    "]\nregion = { type = \"box\", min = [" + (dim == 2 ? "0.0115, 0" : "0.0075, 0, 0") + "], max = [" +
+                    box + "] }\n"};
+      const pdmpm::test::ScratchDir scratch("cli_tiny_" + model + std::to_string(dim));
+      const fs::path dir = scratch.path();
       const fs::path scene = dir / "scene.toml";
-      std::ofstream(scene) << s.str();
-      const auto r = run("run " + scene.string() + " --out " + (dir / "out").string() + " --quiet");
+      std::ofstream(scene) << text.toml();
+      const auto r = run_pdmpm("run " + scene.string() + " --out " + (dir / "out").string() + " --quiet");
       ASSERT_EQ(r.status, 0) << r.output;
       for (const char* f : {"fields.h5", "fields.xdmf", "history.csv", "summary.json"})
         EXPECT_TRUE(fs::exists(dir / "out" / f)) << f;
@@ -110,12 +98,11 @@ TEST(Cli, SmallScenesOfEachModelRun) {
       EXPECT_EQ(j["steps"], 20);
       EXPECT_GT(j["bond_updates_per_second"].get<double>(), 0.0);
       EXPECT_GT(j["metrics"]["kinetic_energy"].get<double>(), 0.0);
-      fs::remove_all(dir);
     }
 }
 
 TEST(Cli, ConstantsPrintsEveryInfluenceFunction) {
-  const auto r = run("constants --E 200e9 --nu 0.25 --delta 0.003 --format json");
+  const auto r = run_pdmpm("constants --E 200e9 --nu 0.25 --delta 0.003 --format json");
   ASSERT_EQ(r.status, 0) << r.output;
   const auto j = nlohmann::json::parse(r.output);
   for (const char* s : {"1d", "plane_stress", "plane_strain", "3d"})
@@ -123,7 +110,7 @@ TEST(Cli, ConstantsPrintsEveryInfluenceFunction) {
   // Deryugin et al. 2023 table 4.2, constant ω: c = 6E / ((1 − 2ν) π δ⁴).
   const double c = j["settings"]["3d"]["influence"]["constant"]["pmb_micromodulus_c"];
   EXPECT_NEAR(c, 6 * 200e9 / (0.5 * M_PI * std::pow(0.003, 4)), 1e-6 * c);
-  const auto table = run("constants --G0 100");
+  const auto table = run_pdmpm("constants --G0 100");
   EXPECT_EQ(table.status, 0);
   EXPECT_NE(table.output.find("quadratic"), std::string::npos);
   EXPECT_NE(table.output.find("s₀ from G₀"), std::string::npos);

@@ -8,8 +8,8 @@ namespace pdmpm::bc {
 namespace {
 
 TEST(AnalyticField, AffineAppliesH) {
-  const pd::Elastic m{1e9, 0.25, 1000};
-  auto f = make_analytic_field<2>("affine", {{"h_xx", 0.1}, {"h_xy", 0.2}}, m, pd::Setting::plane_strain);
+  const core::Elastic m{1e9, 0.25, 1000};
+  auto f = make_analytic_field<2>("affine", {{"h_xx", 0.1}, {"h_xy", 0.2}}, m, core::Setting::plane_strain);
   Vec<2> u, v;
   f->evaluate(Vec<2>(1, 2), 0.0, u, v);
   EXPECT_DOUBLE_EQ(u[0], 0.1 + 0.4);
@@ -18,9 +18,9 @@ TEST(AnalyticField, AffineAppliesH) {
 }
 
 TEST(AnalyticField, SphericalWaveIsRadialAndMatchesTheSourceAtR0) {
-  const pd::Elastic m{200e9, 0.25, 7850};
+  const core::Elastic m{200e9, 0.25, 7850};
   auto f = make_analytic_field<3>("spherical_wave", {{"r0", 0.01}, {"period", 1e-5}, {"amplitude", 1e-4}}, m,
-                                  pd::Setting::solid3d);
+                                  core::Setting::solid3d);
   Vec<3> u, v;
   const Vec<3> x(0.006, 0.008, 0.0);  // r = r0
   const double t = 0.3e-5;

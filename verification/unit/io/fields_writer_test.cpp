@@ -15,30 +15,13 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-// ---------------------------------------------------------------------------
-// Scratch directory per test, removed afterwards.
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& tag)
-      : path_(fs::temp_directory_path() / ("pdmpm_fields_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 // ---------------------------------------------------------------------------
 // Reading back with the HDF5 C API (deliberately not through solver/io/hdf5).
@@ -323,7 +306,7 @@ FrameSpec make_frame(int dimension, std::int64_t step, double time, std::size_t 
 // Writes the frames, then checks the HDF5 contents bit for bit and the XDMF
 // structure against them.
 void write_and_check(int dimension, const std::vector<FrameSpec>& frames, const std::string& tag) {
-  ScratchDir dir(tag);
+  test::ScratchDir dir("fields_" + tag);
   const fs::path h5 = dir.path() / "fields.h5", xdmf = dir.path() / "fields.xdmf";
   {
     FieldsWriter writer(h5, xdmf, "fields.h5", dimension);
@@ -441,7 +424,7 @@ TEST(FieldsWriter, PadTo3dFillsUnusedAxesWithZero) {
 }
 
 TEST(FieldsWriter, DestructorClosesAndWritesXdmf) {
-  ScratchDir dir("dtor");
+  test::ScratchDir dir("fields_dtor");
   {
     FieldsWriter writer(dir.path() / "f.h5", dir.path() / "f.xdmf", "f.h5", 3);
     const FrameSpec f = make_frame(3, 0, 0.0, 4, true);
@@ -456,7 +439,7 @@ TEST(FieldsWriter, DestructorClosesAndWritesXdmf) {
 // A bad frame is rejected with a message that names the problem, before the
 // file is touched (so the writer stays usable).
 TEST(FieldsWriter, RejectsInconsistentInput) {
-  ScratchDir dir("invalid");
+  test::ScratchDir dir("fields_invalid");
   FieldsWriter writer(dir.path() / "f.h5", dir.path() / "f.xdmf", "f.h5", 2);
   const FrameSpec good = make_frame(2, 5, 1.0, 4, true);
   auto expect_error = [&](std::int64_t step, double time, const std::vector<double>& positions,
@@ -491,7 +474,7 @@ TEST(FieldsWriter, RejectsInconsistentInput) {
 // HDF5 failures surface as RunError with HDF5's reason, and nothing is printed
 // by HDF5's own error handler.
 TEST(FieldsWriter, HdfErrorsBecomeExceptionsWithoutPrinting) {
-  ScratchDir dir("h5error");
+  test::ScratchDir dir("fields_h5error");
   const fs::path missing = dir.path() / "no_such_dir" / "f.h5";
   testing::internal::CaptureStderr();
   std::string message;

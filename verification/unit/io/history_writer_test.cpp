@@ -12,28 +12,13 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& tag)
-      : path_(fs::temp_directory_path() / ("pdmpm_history_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 std::vector<std::string> read_lines(const fs::path& p) {
   std::ifstream in(p);
@@ -52,7 +37,7 @@ std::vector<std::string> split(const std::string& line) {
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(HistoryWriter, RoundTripsEveryDoubleExactly) {
-  ScratchDir dir("roundtrip");
+  test::ScratchDir dir("history_roundtrip");
   const fs::path path = dir.path() / "history.csv";
   const std::vector<std::string> columns = {"time", "step", "kinetic_energy", "broken_bonds"};
   // Values that a short format would change: 0.1, 1/3, the extremes of the
@@ -84,7 +69,7 @@ TEST(HistoryWriter, RoundTripsEveryDoubleExactly) {
 }
 
 TEST(HistoryWriter, NonFiniteValuesAreWrittenReadably) {
-  ScratchDir dir("nonfinite");
+  test::ScratchDir dir("history_nonfinite");
   const fs::path path = dir.path() / "h.csv";
   HistoryWriter writer(path, {"a", "b", "c"});
   writer.write_row({std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity(), std::nan("")});
@@ -99,7 +84,7 @@ TEST(HistoryWriter, NonFiniteValuesAreWrittenReadably) {
 // `tail -f` sees each row as soon as it is written: read the file through a
 // separate stream while the writer is still open.
 TEST(HistoryWriter, EachRowIsFlushed) {
-  ScratchDir dir("flush");
+  test::ScratchDir dir("history_flush");
   const fs::path path = dir.path() / "h.csv";
   HistoryWriter writer(path, {"t", "e"});
   EXPECT_EQ(read_lines(path), (std::vector<std::string>{"t,e"}));
@@ -110,7 +95,7 @@ TEST(HistoryWriter, EachRowIsFlushed) {
 }
 
 TEST(HistoryWriter, RejectsBadColumnsRowsAndPaths) {
-  ScratchDir dir("invalid");
+  test::ScratchDir dir("history_invalid");
   const fs::path path = dir.path() / "h.csv";
   EXPECT_THROW(HistoryWriter(path, {}), RunError);
   EXPECT_THROW(HistoryWriter(path, {"a", ""}), RunError);

@@ -11,29 +11,13 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-class ScratchDir {
- public:
-  explicit ScratchDir(const std::string& tag)
-      : path_(fs::temp_directory_path() / ("pdmpm_outdir_" + tag + "_" + std::to_string(::getpid()))) {
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    fs::permissions(path_, fs::perms::owner_all, fs::perm_options::add, ec);
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
 
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
@@ -64,7 +48,7 @@ std::string error_of(const std::function<void()>& action) {
 }
 
 TEST(OutputDirectory, StagesInsideTheDirectoryUnderAHiddenPidName) {
-  ScratchDir scratch("staging");
+  test::ScratchDir scratch("outdir_staging");
   const fs::path out = scratch.path() / "run" / "nested";
   OutputDirectory dir(out);
   EXPECT_TRUE(fs::is_directory(out));
@@ -80,7 +64,7 @@ TEST(OutputDirectory, StagesInsideTheDirectoryUnderAHiddenPidName) {
 }
 
 TEST(OutputDirectory, AbortLeavesNothingBehind) {
-  ScratchDir scratch("abort");
+  test::ScratchDir scratch("outdir_abort");
   const fs::path out = scratch.path() / "out";
   fs::create_directories(out);
   write_text(out / "fields.h5", "previous run");
@@ -96,7 +80,7 @@ TEST(OutputDirectory, AbortLeavesNothingBehind) {
 }
 
 TEST(OutputDirectory, AbortByExceptionLeavesNothingBehind) {
-  ScratchDir scratch("throw");
+  test::ScratchDir scratch("outdir_throw");
   const fs::path out = scratch.path() / "out";
   EXPECT_THROW(
       {
@@ -109,7 +93,7 @@ TEST(OutputDirectory, AbortByExceptionLeavesNothingBehind) {
 }
 
 TEST(OutputDirectory, CommitMovesFilesReplacingOldOnesAndKeepsOthers) {
-  ScratchDir scratch("commit");
+  test::ScratchDir scratch("outdir_commit");
   const fs::path out = scratch.path() / "out";
   fs::create_directories(out);
   write_text(out / "fields.h5", "old fields");
@@ -129,14 +113,14 @@ TEST(OutputDirectory, CommitMovesFilesReplacingOldOnesAndKeepsOthers) {
 }
 
 TEST(OutputDirectory, RejectsNamesThatLeaveTheStagingDirectory) {
-  ScratchDir scratch("names");
+  test::ScratchDir scratch("outdir_names");
   OutputDirectory dir(scratch.path() / "out");
   for (const std::string bad : {"", ".", "..", "../escape.txt", "sub/file.txt", "/etc/passwd"})
     EXPECT_NE(error_of([&] { (void)dir.path(bad); }).find("not a plain file name"), std::string::npos) << bad;
 }
 
 TEST(OutputDirectory, AFileWhereTheDirectoryShouldBeIsAnError) {
-  ScratchDir scratch("file");
+  test::ScratchDir scratch("outdir_file");
   const fs::path out = scratch.path() / "out";
   write_text(out, "I am a file");
   const std::string message = error_of([&] { OutputDirectory dir(out); });
@@ -156,7 +140,7 @@ TEST(OutputDirectory, ADirectoryWhereNothingCanBeCreatedIsAnError) {
 
 TEST(OutputDirectory, AReadOnlyDirectoryIsAnError) {
   if (::geteuid() == 0) GTEST_SKIP() << "permission bits do not bind root (see the /proc test)";
-  ScratchDir scratch("readonly");
+  test::ScratchDir scratch("outdir_readonly");
   const fs::path out = scratch.path() / "locked";
   fs::create_directories(out);
   fs::permissions(out, fs::perms::owner_read | fs::perms::owner_exec);

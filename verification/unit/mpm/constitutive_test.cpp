@@ -11,7 +11,7 @@
 namespace pdmpm::mpm {
 namespace {
 
-Material steel(MaterialModel m) { return {m, 200e9, 0.3, 7800.0, 300e6, 2e9}; }
+Material steel(MaterialModel m) { return {m, {200e9, 0.3, 7800.0}, {300e6, 2e9}}; }
 
 template <int D>
 Mat<D> rotation(double angle) {
@@ -22,7 +22,7 @@ Mat<D> rotation(double angle) {
 }
 
 template <int D>
-void check_objective(MaterialModel model, Setting setting, double strain) {
+void check_objective(MaterialModel model, core::Setting setting, double strain) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const Constitutive<D> law(steel(model), setting);
@@ -37,7 +37,7 @@ void check_objective(MaterialModel model, Setting setting, double strain) {
     const Mat<3> Q3 = embed_deformation<D>(Q);
     // Round-off of the polar decomposition / eigen-solver acts on the strain at the
     // level of ~1e-15 absolute: stress error ~ E·1e-15, energy error ~ E·strain·1e-15.
-    const double E = law.material().E;
+    const double E = law.material().elastic.E;
     EXPECT_LT((b.kirchhoff - Q3 * a.kirchhoff * Q3.transpose()).norm(), 1e-11 * a.kirchhoff.norm() + 1e-14 * E)
         << name(model) << " " << name(setting);
     EXPECT_NEAR(a.energy, b.energy, 1e-11 * std::abs(a.energy) + 1e-13 * E * strain) << name(model) << " " << name(setting) << " " << strain;
@@ -48,12 +48,12 @@ void check_objective(MaterialModel model, Setting setting, double strain) {
 TEST(Constitutive, ObjectiveForEveryModelAndSetting) {
   for (double strain : {1e-4, 1e-2, 0.2}) {
     for (auto m : {MaterialModel::linear_elastic, MaterialModel::j2}) {
-      check_objective<2>(m, Setting::plane_stress, strain);
-      check_objective<2>(m, Setting::plane_strain, strain);
-      check_objective<3>(m, Setting::solid3d, strain);
+      check_objective<2>(m, core::Setting::plane_stress, strain);
+      check_objective<2>(m, core::Setting::plane_strain, strain);
+      check_objective<3>(m, core::Setting::solid3d, strain);
     }
-    check_objective<2>(MaterialModel::neo_hookean, Setting::plane_strain, strain);
-    check_objective<3>(MaterialModel::neo_hookean, Setting::solid3d, strain);
+    check_objective<2>(MaterialModel::neo_hookean, core::Setting::plane_strain, strain);
+    check_objective<3>(MaterialModel::neo_hookean, core::Setting::solid3d, strain);
   }
 }
 
@@ -62,24 +62,25 @@ TEST(Constitutive, SmallStrainLimitIsHooke) {
   Mat<3> H;
   H << 1, 2, -1, 0.5, -3, 1, 2, 0, 1.5;
   H *= 1e-7;
-  const Material m = steel(MaterialModel::linear_elastic);
+  const Material law = steel(MaterialModel::linear_elastic);
+  const core::Elastic& m = law.elastic;
   const Mat<3> eps = 0.5 * (H + H.transpose());
   const Mat<3> hooke = m.lame() * eps.trace() * Mat<3>::Identity() + 2 * m.shear() * eps;
   for (auto model : {MaterialModel::linear_elastic, MaterialModel::neo_hookean}) {
     PointHistory hist;
-    const StressResult r = Constitutive<3>({model, 200e9, 0.3, 7800}, Setting::solid3d).update(Mat<3>::Identity() + H, hist);
+    const StressResult r = Constitutive<3>({model, {200e9, 0.3, 7800}}, core::Setting::solid3d).update(Mat<3>::Identity() + H, hist);
     EXPECT_LT((r.kirchhoff - hooke).norm(), 1e-5 * hooke.norm()) << name(model);
   }
   // Plane stress: σ33 = 0 and ε33 = −ν/(1−ν)(ε11 + ε22).
   PointHistory hist;
   const Mat<2> F2 = Mat<2>::Identity() + H.topLeftCorner<2, 2>();
-  const StressResult r = Constitutive<2>(m, Setting::plane_stress).update(F2, hist);
+  const StressResult r = Constitutive<2>(law, core::Setting::plane_stress).update(F2, hist);
   const double c = m.E / (1 - m.nu * m.nu);
   EXPECT_NEAR(r.kirchhoff(0, 0), c * (eps(0, 0) + m.nu * eps(1, 1)), 1e-5 * c * 1e-7);
   EXPECT_EQ(r.kirchhoff(2, 2), 0.0);
   EXPECT_NEAR(r.out_of_plane_strain, -m.nu / (1 - m.nu) * (eps(0, 0) + eps(1, 1)), 1e-5 * 1e-7);
   // Bar: uniaxial stress E ε.
-  const StressResult b = Constitutive<1>(m, Setting::bar1d).update(Mat<1>(1.0 + 1e-7), hist);
+  const StressResult b = Constitutive<1>(law, core::Setting::bar1d).update(Mat<1>(1.0 + 1e-7), hist);
   EXPECT_NEAR(b.kirchhoff(0, 0), m.E * std::log(1.0 + 1e-7), 1e-9);
 }
 
@@ -104,11 +105,11 @@ void expect_kirchhoff_is_energy_derivative(const Constitutive<3>& law) {
 }
 
 TEST(Constitutive, NeoHookeanStressIsEnergyDerivative) {
-  expect_kirchhoff_is_energy_derivative({{MaterialModel::neo_hookean, 1e7, 0.3, 1000}, Setting::solid3d});
+  expect_kirchhoff_is_energy_derivative({{MaterialModel::neo_hookean, {1e7, 0.3, 1000}}, core::Setting::solid3d});
 }
 
 TEST(Constitutive, HenckyStressIsEnergyDerivative3D) {
-  expect_kirchhoff_is_energy_derivative({{MaterialModel::linear_elastic, 1e7, 0.3, 1000}, Setting::solid3d});
+  expect_kirchhoff_is_energy_derivative({{MaterialModel::linear_elastic, {1e7, 0.3, 1000}}, core::Setting::solid3d});
 }
 
 TEST(Kinematics, PolarLogRecoversRotationAndStretch) {

@@ -27,12 +27,12 @@ std::vector<Vec<2>> run_plate(int threads, ShapeFunction shape, UpdateScheme sch
     particles.v[p] = Vec<2>(30.0 * std::sin(60.0 * x[1]) + 200.0 * x[0], -20.0 * std::cos(80.0 * x[0]));
   }
   Settings<2> s;
-  s.setting = Setting::plane_stress;
+  s.setting = core::Setting::plane_stress;
   s.shape = shape;
   s.scheme = scheme;
-  s.material = {MaterialModel::j2, 200e9, 0.3, 7800, 300e6, 2e9};
+  s.material = {MaterialModel::j2, {200e9, 0.3, 7800}, {300e6, 2e9}};
   if (nonlocal) s.nonlocal = {true, 2e-3, 1.5};
-  s.failure = {true, 0.05, -1.5, FailureRule::strain};
+  s.failure = {true, 0.05, -1.5, core::FailureRule::strain};
   GridBc<2> wall;
   wall.kind = BcKind::fixed;
   wall.max = Vec<2>(0.0, 1e9);
@@ -83,9 +83,9 @@ TEST(MpmSimulation, SymmetryPlaneEqualsMirroredFullModel) {
     for (Index p = 0; p < half.n_real; ++p) half.v[p] = v0(half.x0[p]);
     for (Index p = 0; p < full.n_real; ++p) full.v[p] = v0(full.x0[p]);
     Settings<2> s;
-    s.setting = Setting::plane_strain;
+    s.setting = core::Setting::plane_strain;
     s.shape = shape;
-    s.material = {MaterialModel::neo_hookean, 1e4, 0.3, 1.0};
+    s.material = {MaterialModel::neo_hookean, {1e4, 0.3, 1.0}};
     Settings<2> sh = s;
     GridBc<2> sym;
     sym.kind = BcKind::symmetry;
@@ -119,8 +119,8 @@ TEST(MpmSimulation, FreeBodyConservesMomentum) {
   for (Index p = 0; p < particles.n_real; ++p)
     particles.v[p] = Vec<3>(1.0, -0.5, 0.25) + 3.0 * Vec<3>(std::sin(9 * particles.x0[p][1]), particles.x0[p][2], 0.0);
   Settings<3> s;
-  s.setting = Setting::solid3d;
-  s.material = {MaterialModel::j2, 1e7, 0.3, 1000, 1e5, 1e6};
+  s.setting = core::Setting::solid3d;
+  s.material = {MaterialModel::j2, {1e7, 0.3, 1000}, {1e5, 1e6}};
   Simulation<3> sim(s, particles);
   const Vec<3> p0 = sim.momentum();
   for (int n = 0; n < 100; ++n) sim.step();
@@ -131,7 +131,7 @@ TEST(MpmSimulation, FreeBodyConservesMomentum) {
 TEST(MpmSimulation, GridThatMissesTheBodyIsAnInputError) {
   auto particles = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(1, 1), 0.1);
   Settings<2> s;
-  s.material = {MaterialModel::linear_elastic, 1e6, 0.3, 1000};
+  s.material = {MaterialModel::linear_elastic, {1e6, 0.3, 1000}};
   s.domain_min = Vec<2>(0.0, 0.0);
   s.domain_max = Vec<2>(0.5, 1.0);
   try {
@@ -154,7 +154,7 @@ TEST(MpmSimulation, OnlyMpmAndTransitionParticlesMove) {
     if (p % 3 == 1) particles.kind[p] = core::ParticleKind::transition;
   }
   Settings<2> s;
-  s.material = {MaterialModel::linear_elastic, 1e6, 0.3, 1000};
+  s.material = {MaterialModel::linear_elastic, {1e6, 0.3, 1000}};
   Simulation<2> sim(s, particles);
   for (int n = 0; n < 5; ++n) sim.step();
   for (Index p = 0; p < particles.n_real; ++p) {
@@ -176,11 +176,11 @@ namespace {
 // and η outputs, and carry no stress afterwards.
 TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {
   const double d0 = 0.15, c = -1.5;
-  for (FailureRule rule : {FailureRule::strain, FailureRule::accumulated}) {
+  for (core::FailureRule rule : {core::FailureRule::strain, core::FailureRule::accumulated}) {
     auto particles = mu::box_particles<3>(Vec<3>::Zero(), Vec<3>::Constant(4e-3), 1e-3);
     Settings<3> s;
-    s.setting = Setting::solid3d;
-    s.material = {MaterialModel::j2, 200e9, 0.3, 7800, 300e6, 2e9};
+    s.setting = core::Setting::solid3d;
+    s.material = {MaterialModel::j2, {200e9, 0.3, 7800}, {300e6, 2e9}};
     s.failure = {true, d0, c, rule};
     const double rate = 100.0;  // 1/s along x; lateral −0.499 rate: small volumetric rate
     GridBc<3> drive;
@@ -206,13 +206,13 @@ TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {
       damage += (a - alpha) / (d0 * std::exp(c * eta));
       alpha = a;
       // Not failed yet: the criterion must not be met.
-      if (rule == FailureRule::strain) EXPECT_LT(alpha, d0 * std::exp(c * eta));
+      if (rule == core::FailureRule::strain) EXPECT_LT(alpha, d0 * std::exp(c * eta));
       else EXPECT_LT(damage, 1.0 + 1e-12);
     }
     ASSERT_GE(failed_at, 0) << name(rule);
     EXPECT_GT(eta, 0.05);  // the test exercises the exponent
     // It failed within one strain increment (≈ 1e-3, η changes by < 1e-3 per step).
-    if (rule == FailureRule::strain) EXPECT_GT(alpha + 1.5e-3, d0 * std::exp(c * eta));
+    if (rule == core::FailureRule::strain) EXPECT_GT(alpha + 1.5e-3, d0 * std::exp(c * eta));
     else EXPECT_GT(damage + 1.5e-3 / (d0 * std::exp(c * eta)), 1.0);
     EXPECT_EQ(sim.state().stress[p].norm(), 0.0);
     // Every particle sees the same homogeneous state, so all fail in that step.

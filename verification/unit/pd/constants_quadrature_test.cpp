@@ -25,24 +25,24 @@ TEST(ConstantsQuadrature, KnownIntegrals) {
 TEST(ConstantsQuadrature, HorizonMeasures) {
   const double d = 2e-3, h = 1e-3, A = 1e-6;
   auto one = [](double, const Eigen::Vector3d&) { return 1.0; };
-  EXPECT_NEAR(integrate_horizon(Setting::bar1d, d, A, one).value / (2.0 * d * A), 1.0, 1e-13);
-  EXPECT_NEAR(integrate_horizon(Setting::plane_stress, d, h, one).value / (pi * d * d * h), 1.0, 1e-13);
-  EXPECT_NEAR(integrate_horizon(Setting::solid3d, d, 1.0, one).value / (4.0 / 3.0 * pi * d * d * d), 1.0, 1e-13);
+  EXPECT_NEAR(integrate_horizon(core::Setting::bar1d, d, A, one).value / (2.0 * d * A), 1.0, 1e-13);
+  EXPECT_NEAR(integrate_horizon(core::Setting::plane_stress, d, h, one).value / (pi * d * d * h), 1.0, 1e-13);
+  EXPECT_NEAR(integrate_horizon(core::Setting::solid3d, d, 1.0, one).value / (4.0 / 3.0 * pi * d * d * d), 1.0, 1e-13);
   // Direction average: ∫ n_x² dΩ = 4π/3 over the sphere, π over the circle.
   auto nx2 = [](double, const Eigen::Vector3d& n) { return n.x() * n.x(); };
-  EXPECT_NEAR(integrate_horizon(Setting::solid3d, 1.0, 1.0, nx2).value, 4.0 * pi / 9.0, 1e-13);
-  EXPECT_NEAR(integrate_horizon(Setting::plane_strain, 1.0, 1.0, nx2).value, pi / 2.0, 1e-13);
+  EXPECT_NEAR(integrate_horizon(core::Setting::solid3d, 1.0, 1.0, nx2).value, 4.0 * pi / 9.0, 1e-13);
+  EXPECT_NEAR(integrate_horizon(core::Setting::plane_strain, 1.0, 1.0, nx2).value, pi / 2.0, 1e-13);
 }
 
 TEST(ConstantsQuadrature, PmbEnergyUnderShearMatchesClassical3d) {
   // PMB at ν = 1/4 reproduces the classical energy for any small strain, not
   // only the isotropic one the constant was fitted to.
-  const Elastic m{200e9, 0.25, 7850.0};
+  const core::Elastic m{200e9, 0.25, 7850.0};
   const double d = 3e-3;
-  const double c = pmb_micromodulus(Influence::quadratic, Setting::solid3d, m, d, 1.0).value;
+  const double c = pmb_micromodulus(Influence::quadratic, core::Setting::solid3d, m, d, 1.0).value;
   Strain eps = Strain::Zero();
   eps(0, 2) = eps(2, 0) = 1e-3;
-  const double W = pmb_energy_density(Influence::quadratic, Setting::solid3d, c, eps, d, 1.0).value;
+  const double W = pmb_energy_density(Influence::quadratic, core::Setting::solid3d, c, eps, d, 1.0).value;
   EXPECT_NEAR(W / (m.shear() * (eps.array() * eps.array()).sum()), 1.0, 1e-10);
 }
 
@@ -60,7 +60,7 @@ TEST(ConstantsQuadrature, IntegrandExceptionsPropagateThroughNesting) {
     if (r > 0.5) throw std::domain_error("integrand refused");
     return 1.0;
   };
-  EXPECT_THROW(integrate_horizon(Setting::solid3d, 1.0, 1.0, bad), std::domain_error);
+  EXPECT_THROW(integrate_horizon(core::Setting::solid3d, 1.0, 1.0, bad), std::domain_error);
 }
 
 int count_calls = 0;

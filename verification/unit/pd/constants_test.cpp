@@ -12,7 +12,7 @@ namespace {
 
 constexpr double pi = std::numbers::pi;
 const double e1 = std::exp(-1.0);
-const Setting all_settings[] = {Setting::bar1d, Setting::plane_stress, Setting::plane_strain, Setting::solid3d};
+const core::Setting all_settings[] = {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d};
 
 // Relative tolerance for closed forms evaluated two ways in double: a handful
 // of roundings, amplified ≤ ~300× by the cancellation in the exponential moments.
@@ -41,42 +41,42 @@ TEST(Constants, InfluenceMomentsByHand) {
 }
 
 TEST(Constants, MicromodulusByHand) {
-  const Elastic m{1.0, 0.25, 1.0};
+  const core::Elastic m{1.0, 0.25, 1.0};
   // E = 1, δ = 1, unit measure, ω = 1.
-  EXPECT_NEAR(pmb_micromodulus(Influence::constant, Setting::solid3d, m, 1.0, 1.0), 12.0 / pi, tight);  // 6/((1−2ν)π)
-  EXPECT_NEAR(pmb_micromodulus(Influence::constant, Setting::bar1d, m, 1.0, 1.0), 2.0, tight);
-  EXPECT_NEAR(pmb_micromodulus(Influence::constant, Setting::plane_strain, m, 1.0, 1.0), 9.6 / pi, tight);  // 48/(5π)
-  const Elastic ps{1.0, 1.0 / 3.0, 1.0};
-  EXPECT_NEAR(pmb_micromodulus(Influence::constant, Setting::plane_stress, ps, 1.0, 1.0), 9.0 / pi, tight);
+  EXPECT_NEAR(pmb_micromodulus(Influence::constant, core::Setting::solid3d, m, 1.0, 1.0), 12.0 / pi, tight);  // 6/((1−2ν)π)
+  EXPECT_NEAR(pmb_micromodulus(Influence::constant, core::Setting::bar1d, m, 1.0, 1.0), 2.0, tight);
+  EXPECT_NEAR(pmb_micromodulus(Influence::constant, core::Setting::plane_strain, m, 1.0, 1.0), 9.6 / pi, tight);  // 48/(5π)
+  const core::Elastic ps{1.0, 1.0 / 3.0, 1.0};
+  EXPECT_NEAR(pmb_micromodulus(Influence::constant, core::Setting::plane_stress, ps, 1.0, 1.0), 9.0 / pi, tight);
   // Triangular 3D: I₃ = 1/20, (1 − 2ν) = ½ → c = 3E/(2π(1−2ν)I₃) = 60/π.
-  EXPECT_NEAR(pmb_micromodulus(Influence::triangular, Setting::solid3d, m, 1.0, 1.0), 60.0 / pi, tight * 20);
+  EXPECT_NEAR(pmb_micromodulus(Influence::triangular, core::Setting::solid3d, m, 1.0, 1.0), 60.0 / pi, tight * 20);
 }
 
 TEST(Constants, WeightedVolumeByHand) {
   // ω = 1: 3D 4πδ⁵/5, 2D 2πhδ⁴/4, 1D 2Aδ³/3.
-  EXPECT_NEAR(lps_weighted_volume(Influence::constant, Setting::solid3d, 1.0, 1.0), 4.0 * pi / 5.0, tight);
-  EXPECT_NEAR(lps_weighted_volume(Influence::constant, Setting::plane_strain, 1.0, 0.5), pi / 4.0, tight);
-  EXPECT_NEAR(lps_weighted_volume(Influence::constant, Setting::bar1d, 1.0, 3.0), 2.0, tight);
+  EXPECT_NEAR(lps_weighted_volume(Influence::constant, core::Setting::solid3d, 1.0, 1.0), 4.0 * pi / 5.0, tight);
+  EXPECT_NEAR(lps_weighted_volume(Influence::constant, core::Setting::plane_strain, 1.0, 0.5), pi / 4.0, tight);
+  EXPECT_NEAR(lps_weighted_volume(Influence::constant, core::Setting::bar1d, 1.0, 3.0), 2.0, tight);
   // ω = δ/r: 3D 4πδ·δ⁴/4 = πδ⁵.
-  EXPECT_NEAR(lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, 2.0, 1.0), 32.0 * pi, tight * 100);
+  EXPECT_NEAR(lps_weighted_volume(Influence::inverse_distance, core::Setting::solid3d, 2.0, 1.0), 32.0 * pi, tight * 100);
 }
 
 TEST(Constants, CriticalStretchByHand) {
-  const Elastic m{200e9, 0.25, 7850.0};
+  const core::Elastic m{200e9, 0.25, 7850.0};
   const double G0 = 500.0, d = 3e-3;
   // 3D, ω = 1 (Silling & Askari 2005): s₀ = sqrt(5G₀/(9Kδ)).
-  EXPECT_NEAR(critical_stretch(Influence::constant, Setting::solid3d, m, G0, d, 1.0),
+  EXPECT_NEAR(critical_stretch(Influence::constant, core::Setting::solid3d, m, G0, d, 1.0),
               std::sqrt(5.0 * G0 / (9.0 * m.bulk() * d)), 1e-15);
   // 1D, ω = 1: G₀ = (c s₀² A/2)(δ³/3) with c = 2E/(Aδ²) → s₀ = sqrt(3G₀/(Eδ)).
-  EXPECT_NEAR(critical_stretch(Influence::constant, Setting::bar1d, m, G0, d, 1e-6), std::sqrt(3.0 * G0 / (m.E * d)),
+  EXPECT_NEAR(critical_stretch(Influence::constant, core::Setting::bar1d, m, G0, d, 1e-6), std::sqrt(3.0 * G0 / (m.E * d)),
               1e-15);
 }
 
 TEST(Constants, AllPositiveAndFinite) {
-  for (Setting s : all_settings)
+  for (core::Setting s : all_settings)
     for (Influence w : all_influences) {
-      const Elastic m{70e9, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, 2700.0};
-      const double meas = s == Setting::solid3d ? 1.0 : 1e-3;
+      const core::Elastic m{70e9, s == core::Setting::plane_stress ? 1.0 / 3.0 : 0.25, 2700.0};
+      const double meas = s == core::Setting::solid3d ? 1.0 : 1e-3;
       SCOPED_TRACE(std::string(name(s)) + " " + std::string(name(w)));
       for (int n = 0; n <= 5; ++n) {
         if (w == Influence::inverse_distance && n == 0) continue;  // ∫ δ/r dr diverges
@@ -92,18 +92,18 @@ TEST(Constants, AllPositiveAndFinite) {
 
 TEST(Constants, ScalingWithHorizonModulusAndFractureEnergy) {
   const double d = 2e-3, k = 1.7;
-  for (Setting s : all_settings) {
+  for (core::Setting s : all_settings) {
     const int dim = dimension(s);
-    const Elastic m{100e9, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25, 1.0};
-    const Elastic m2{2.0 * m.E, m.nu, 1.0};
-    const double meas = s == Setting::solid3d ? 1.0 : 1e-3;
+    const core::Elastic m{100e9, s == core::Setting::plane_stress ? 1.0 / 3.0 : 0.25, 1.0};
+    const core::Elastic m2{2.0 * m.E, m.nu, 1.0};
+    const double meas = s == core::Setting::solid3d ? 1.0 : 1e-3;
     for (Influence w : all_influences) {
       SCOPED_TRACE(std::string(name(s)) + " " + std::string(name(w)));
       // c ∝ E / δ^{d+1} (measure fixed), m ∝ δ^{d+2}, s₀ ∝ sqrt(G₀ / (E δ)).
       const double c = pmb_micromodulus(w, s, m, d, meas);
       EXPECT_NEAR(pmb_micromodulus(w, s, m, k * d, meas) / c, std::pow(k, -(dim + 1)), 1e-12);
       EXPECT_NEAR(pmb_micromodulus(w, s, m2, d, meas) / c, 2.0, 1e-14);
-      EXPECT_NEAR(pmb_micromodulus(w, s, m, d, 2.0 * meas) / c, s == Setting::solid3d ? 1.0 : 0.5, 1e-14);
+      EXPECT_NEAR(pmb_micromodulus(w, s, m, d, 2.0 * meas) / c, s == core::Setting::solid3d ? 1.0 : 0.5, 1e-14);
       const double mv = lps_weighted_volume(w, s, d, meas);
       EXPECT_NEAR(lps_weighted_volume(w, s, k * d, meas) / mv, std::pow(k, dim + 2), 1e-12);
       const double s0 = critical_stretch(w, s, m, 1e3, d, meas);
@@ -118,14 +118,14 @@ TEST(Constants, ScalingWithHorizonModulusAndFractureEnergy) {
 TEST(Constants, LpsDilatationTermVanishesAtThePmbPoissonRatio) {
   // The LPS volumetric coefficient A (3K − 5G in 3D, 2(κ₂ − 2G) in 2D) is zero
   // exactly at the Cauchy ν of a pair potential.
-  EXPECT_NEAR(lps_coefficients(Setting::solid3d, {1.0, 0.25, 1.0}).A, 0.0, 1e-15);
-  EXPECT_NEAR(lps_coefficients(Setting::plane_strain, {1.0, 0.25, 1.0}).A, 0.0, 1e-15);
-  EXPECT_NEAR(lps_coefficients(Setting::plane_stress, {1.0, 1.0 / 3.0, 1.0}).A, 0.0, 1e-15);
-  const auto c3 = lps_coefficients(Setting::solid3d, {1.0, 0.3, 1.0});
+  EXPECT_NEAR(lps_coefficients(core::Setting::solid3d, {1.0, 0.25, 1.0}).A, 0.0, 1e-15);
+  EXPECT_NEAR(lps_coefficients(core::Setting::plane_strain, {1.0, 0.25, 1.0}).A, 0.0, 1e-15);
+  EXPECT_NEAR(lps_coefficients(core::Setting::plane_stress, {1.0, 1.0 / 3.0, 1.0}).A, 0.0, 1e-15);
+  const auto c3 = lps_coefficients(core::Setting::solid3d, {1.0, 0.3, 1.0});
   EXPECT_EQ(c3.d, 3);
   EXPECT_NEAR(c3.gamma, 1.0 / 3.0, 1e-16);
   EXPECT_NEAR(c3.B, 15.0 / 2.6, 1e-14);  // 15G, G = E/(2(1+ν))
-  const auto c1 = lps_coefficients(Setting::bar1d, {3.0, 0.3, 1.0});
+  const auto c1 = lps_coefficients(core::Setting::bar1d, {3.0, 0.3, 1.0});
   EXPECT_EQ(c1.B, 3.0);
   EXPECT_EQ(c1.A, 0.0);
 }
@@ -135,14 +135,14 @@ TEST(Constants, LpsWithInverseDistanceEqualsPmbAtQuarterPoissonRatio) {
   // The LPS pair force (t_ij + t_ji) = 2 B ω e / m with ω = δ/|ξ| must equal
   // PMB's c e/|ξ|, i.e. 2Bδ/m = c.
   const double d = 3e-3, h = 1e-3;
-  const Elastic q{200e9, 0.25, 1.0}, third{200e9, 1.0 / 3.0, 1.0};
+  const core::Elastic q{200e9, 0.25, 1.0}, third{200e9, 1.0 / 3.0, 1.0};
   struct Case {
-    Setting s;
-    Elastic m;
+    core::Setting s;
+    core::Elastic m;
     double meas;
   };
   for (const Case& k :
-       {Case{Setting::solid3d, q, 1.0}, Case{Setting::plane_strain, q, h}, Case{Setting::plane_stress, third, h}}) {
+       {Case{core::Setting::solid3d, q, 1.0}, Case{core::Setting::plane_strain, q, h}, Case{core::Setting::plane_stress, third, h}}) {
     const double B = lps_coefficients(k.s, k.m).B;
     const double mv = lps_weighted_volume(Influence::inverse_distance, k.s, d, k.meas);
     EXPECT_NEAR(2.0 * B * d / mv / pmb_micromodulus(Influence::constant, k.s, k.m, d, k.meas), 1.0, 1e-14) << name(k.s);
@@ -151,16 +151,16 @@ TEST(Constants, LpsWithInverseDistanceEqualsPmbAtQuarterPoissonRatio) {
 
 TEST(Constants, MadenciOterkusByHand) {
   // docs/models/lps.md with E = 1, ν = 1/4 (G = 0.4, K = 2/3, κ₂ = λ + G = 0.8), δ = 1, unit measure.
-  const Elastic m{1.0, 0.25, 1.0};
-  const auto m3 = madenci_oterkus(Setting::solid3d, m, 1.0, 1.0);
+  const core::Elastic m{1.0, 0.25, 1.0};
+  const auto m3 = madenci_oterkus(core::Setting::solid3d, m, 1.0, 1.0);
   EXPECT_NEAR(m3.a, 0.5 * (2.0 / 3.0 - 5.0 * 0.4 / 3.0), 1e-15);
   EXPECT_NEAR(m3.b, 15.0 * 0.4 / (2.0 * pi), 1e-15);
   EXPECT_NEAR(m3.d, 9.0 / (4.0 * pi), 1e-15);
-  const auto m2 = madenci_oterkus(Setting::plane_strain, m, 1.0, 1.0);
+  const auto m2 = madenci_oterkus(core::Setting::plane_strain, m, 1.0, 1.0);
   EXPECT_NEAR(m2.a, 0.5 * (0.8 - 0.8), 1e-15);
   EXPECT_NEAR(m2.b, 6.0 * 0.4 / pi, 1e-15);
   EXPECT_NEAR(m2.d, 2.0 / pi, 1e-15);
-  const auto m1 = madenci_oterkus(Setting::bar1d, m, 1.0, 1.0);
+  const auto m1 = madenci_oterkus(core::Setting::bar1d, m, 1.0, 1.0);
   EXPECT_EQ(m1.a, 0.0);
   EXPECT_NEAR(m1.b, 0.5, 1e-16);
   EXPECT_NEAR(m1.d, 0.5, 1e-16);

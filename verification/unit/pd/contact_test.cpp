@@ -29,7 +29,7 @@ std::vector<Vec<D>> brute_force(const System<D>& sys, const ContactParameters& p
 TEST(ShortRangeContact, VerletListEqualsAllPairsAcrossRebuilds) {
   test::BlockSpec spec;
   spec.sites = 8;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   auto sys = test::make_block<2>(spec);
   ContactParameters prm;
   prm.bonded_pairs = true;  // every pair counts: no bonds needed to compare

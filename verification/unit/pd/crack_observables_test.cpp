@@ -15,7 +15,7 @@ System<2> square(int sites = 20) {
   test::BlockSpec spec;
   spec.sites = sites;
   spec.spacing = 1.0;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   return test::make_block<2>(spec);
 }
 
@@ -39,12 +39,12 @@ void detach(System<2>& sys, Index i) {
 
 TEST(RayleighSpeed, PoissonSolidClosedForm) {
   // ν = 1/4 (λ = G): ξ² = 2 − 2/√3 (Rayleigh 1885), c_R = ξ c_s.
-  const Elastic m{200e9, 0.25, 7850.0};
+  const core::Elastic m{200e9, 0.25, 7850.0};
   const double cs = std::sqrt(m.shear() / m.rho);
-  EXPECT_NEAR(rayleigh_speed(m, Setting::solid3d) / cs, std::sqrt(2.0 - 2.0 / std::sqrt(3.0)), 1e-12);
+  EXPECT_NEAR(rayleigh_speed(m, core::Setting::solid3d) / cs, std::sqrt(2.0 - 2.0 / std::sqrt(3.0)), 1e-12);
   // Plane strain has the 3D wave speeds; plane stress a slower c_p, hence a slower c_R.
-  EXPECT_DOUBLE_EQ(rayleigh_speed(m, Setting::plane_strain), rayleigh_speed(m, Setting::solid3d));
-  EXPECT_LT(rayleigh_speed(m, Setting::plane_stress), rayleigh_speed(m, Setting::plane_strain));
+  EXPECT_DOUBLE_EQ(rayleigh_speed(m, core::Setting::plane_strain), rayleigh_speed(m, core::Setting::solid3d));
+  EXPECT_LT(rayleigh_speed(m, core::Setting::plane_stress), rayleigh_speed(m, core::Setting::plane_strain));
 }
 
 TEST(CrackObservables, CutThroughTheBodySeparatesItIntoTwoPieces) {

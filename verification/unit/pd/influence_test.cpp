@@ -55,19 +55,19 @@ TEST(Influence, NonIncreasingOverTheHorizon) {
 
 TEST(Influence, NamesRoundTrip) {
   for (Influence w : all_influences) {
-    const auto parsed = parse_influence(name(w));
+    const auto parsed = find_enum<Influence>(name(w));
     ASSERT_TRUE(parsed.has_value()) << name(w);
     EXPECT_EQ(*parsed, w);
-    EXPECT_NE(influence_names().find(std::string(name(w))), std::string::npos);
+    EXPECT_NE(enum_names<Influence>().find(std::string(name(w))), std::string::npos);
   }
   EXPECT_EQ(name(Influence::inverse_distance), "inverse_distance");
 }
 
 TEST(Influence, UnknownNamesAreRejected) {
-  EXPECT_FALSE(parse_influence("").has_value());
-  EXPECT_FALSE(parse_influence("Constant").has_value());  // case matters
-  EXPECT_FALSE(parse_influence("spherical").has_value());
-  EXPECT_FALSE(parse_influence("gaussian ").has_value());
+  EXPECT_FALSE(find_enum<Influence>("").has_value());
+  EXPECT_FALSE(find_enum<Influence>("Constant").has_value());  // case matters
+  EXPECT_FALSE(find_enum<Influence>("spherical").has_value());
+  EXPECT_FALSE(find_enum<Influence>("gaussian ").has_value());
 }
 
 }  // namespace

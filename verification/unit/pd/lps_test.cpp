@@ -57,7 +57,7 @@ TEST(Lps, EqualsPmbForInverseDistanceInfluenceAtQuarterPoisson) {
     return best;
   }();
   const double m_discrete = r.lps.weighted_volume()[centre];
-  const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
+  const double m_cont = lps_weighted_volume(Influence::inverse_distance, core::Setting::solid3d, lps_sys.delta, 1.0);
   const Vec<3> f_lps = lps_sys.particles.f[centre] * (m_discrete / m_cont);
   const Vec<3> f_pmb = pmb_sys.particles.f[centre];
   EXPECT_NEAR((f_lps - f_pmb).norm() / f_pmb.norm(), 0.0, 1e-12);
@@ -72,7 +72,7 @@ TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {
   const auto r = evaluate_lps_and_pmb(spec, true);
   const auto& lps_sys = r.lps_sys;
   const auto& pmb_sys = r.pmb_sys;
-  const double m_cont = lps_weighted_volume(Influence::inverse_distance, Setting::solid3d, lps_sys.delta, 1.0);
+  const double m_cont = lps_weighted_volume(Influence::inverse_distance, core::Setting::solid3d, lps_sys.delta, 1.0);
   for (Index i = 0; i < lps_sys.n_real(); ++i) EXPECT_EQ(r.lps.weighted_volume()[i], m_cont);
   double worst = 0.0, scale = 0.0;
   for (Index i = 0; i < lps_sys.n_real(); ++i) {
@@ -85,7 +85,7 @@ TEST(Lps, ContinuumWeightedVolumeEqualsPmbEverywhere) {
 TEST(Lps, RigidRotationGivesZeroForce) {
   test::BlockSpec spec;
   spec.sites = 14;
-  spec.setting = Setting::plane_stress;
+  spec.setting = core::Setting::plane_stress;
   spec.material.nu = 0.3;
   spec.measure = 2e-3;
   auto sys = test::make_block<2>(spec);

@@ -29,13 +29,13 @@ TEST(ModelTable, EveryRowMakesItsModelInEveryDimension) {
 
 TEST(ModelTable, PoissonRatioFollowsTheProperties) {
   for (const auto& info : model_table())
-    for (Setting s : {Setting::bar1d, Setting::plane_stress, Setting::plane_strain, Setting::solid3d}) {
+    for (core::Setting s : {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d}) {
       const auto [lo, hi] = info.poisson_range(s);
       if (const auto nu = info.fixed_poisson(s)) {
         EXPECT_TRUE(info.pair_potential);
         EXPECT_EQ(lo, *nu);
         EXPECT_EQ(hi, *nu);
-        EXPECT_EQ(*nu, s == Setting::plane_stress ? 1.0 / 3.0 : 0.25);
+        EXPECT_EQ(*nu, s == core::Setting::plane_stress ? 1.0 / 3.0 : 0.25);
       } else {
         EXPECT_LT(lo, hi) << info.name;
         EXPECT_EQ(hi, 0.5);
@@ -44,7 +44,7 @@ TEST(ModelTable, PoissonRatioFollowsTheProperties) {
   EXPECT_TRUE(model_info("pmb").pair_potential);
   EXPECT_FALSE(model_info("pmb").state_based);
   EXPECT_TRUE(model_info("lps").state_based);
-  EXPECT_FALSE(model_info("lps").fixed_poisson(Setting::solid3d).has_value());
+  EXPECT_FALSE(model_info("lps").fixed_poisson(core::Setting::solid3d).has_value());
 }
 
 // A scene's method follows from its model: MPM for type "mpm", PD for a row of the table.

@@ -55,12 +55,12 @@ TEST(PartialVolume, ZeroBeyondTheFamilyRadius) {
 
 TEST(PartialVolume, NamesRoundTrip) {
   for (PartialVolume pv : {PartialVolume::none, PartialVolume::seed001, PartialVolume::extended}) {
-    const auto parsed = parse_partial_volume(name(pv));
+    const auto parsed = find_enum<PartialVolume>(name(pv));
     ASSERT_TRUE(parsed.has_value());
     EXPECT_EQ(*parsed, pv);
   }
-  EXPECT_FALSE(parse_partial_volume("seed_001").has_value());
-  EXPECT_FALSE(parse_partial_volume("").has_value());
+  EXPECT_FALSE(find_enum<PartialVolume>("seed_001").has_value());
+  EXPECT_FALSE(find_enum<PartialVolume>("").has_value());
 }
 
 }  // namespace

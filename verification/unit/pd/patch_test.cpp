@@ -46,7 +46,7 @@ TEST(Patch, Pmb3dAffineGivesZeroInteriorForce) {
 TEST(Patch, Lps2dPlaneStrainAffine) {
   test::BlockSpec spec;
   spec.sites = 20;
-  spec.setting = pd::Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   spec.material.nu = 0.3;
   spec.measure = 1e-3;
   auto sys = test::make_block<2>(spec);

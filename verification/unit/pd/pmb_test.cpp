@@ -13,7 +13,7 @@ TEST(Pmb, TwoParticleBondForceAndEnergy) {
   test::BlockSpec spec;
   spec.sites = 2;
   spec.spacing = 1e-3;
-  spec.setting = Setting::bar1d;
+  spec.setting = core::Setting::bar1d;
   spec.horizon_ratio = 1.5;
   spec.partial_volume = PartialVolume::none;
   spec.measure = 1e-6;
@@ -35,7 +35,7 @@ TEST(Pmb, TwoParticleBondForceAndEnergy) {
 TEST(Pmb, BondsBreakOnBothSidesAtTheSameStep) {
   test::BlockSpec spec;
   spec.sites = 6;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   spec.measure = 1e-3;
   auto sys = test::make_block<2>(spec);
   Pmb<2> m;
@@ -60,9 +60,9 @@ TEST(Pmb, BondsBreakOnBothSidesAtTheSameStep) {
 TEST(Pmb, PoissonRatioIsFixedByTheSetting) {
   Pmb<3> m;
   const auto& info = model_info(m.name());
-  EXPECT_EQ(info.poisson_range(Setting::solid3d), std::make_pair(0.25, 0.25));
-  EXPECT_EQ(info.poisson_range(Setting::plane_strain), std::make_pair(0.25, 0.25));
-  EXPECT_EQ(info.poisson_range(Setting::plane_stress), std::make_pair(1.0 / 3.0, 1.0 / 3.0));
+  EXPECT_EQ(info.poisson_range(core::Setting::solid3d), std::make_pair(0.25, 0.25));
+  EXPECT_EQ(info.poisson_range(core::Setting::plane_strain), std::make_pair(0.25, 0.25));
+  EXPECT_EQ(info.poisson_range(core::Setting::plane_stress), std::make_pair(1.0 / 3.0, 1.0 / 3.0));
 }
 
 }  // namespace

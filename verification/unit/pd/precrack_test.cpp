@@ -11,7 +11,7 @@ TEST(Precrack, SegmentCutsExactlyTheCrossingBonds2D) {
   test::BlockSpec spec;
   spec.sites = 10;
   spec.spacing = 1.0;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   spec.measure = 1.0;
   auto sys = test::make_block<2>(spec);
   // Vertical crack at x = 4.5 from y = −1 to y = 20 (through the whole block).
@@ -29,7 +29,7 @@ TEST(Precrack, ParticleOnTheCrackLineKeepsOneSide) {
   test::BlockSpec spec;
   spec.sites = 10;
   spec.spacing = 1.0;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   auto sys = test::make_block<2>(spec);
   CrackSurface<2> crack{{Vec<2>(4.0, -1), Vec<2>(4.0, 20)}};  // through a column of sites
   cut_bonds<2>(sys, crack);
@@ -44,7 +44,7 @@ TEST(Precrack, FiniteSegmentOnlyCutsNearIt) {
   test::BlockSpec spec;
   spec.sites = 20;
   spec.spacing = 1.0;
-  spec.setting = Setting::plane_strain;
+  spec.setting = core::Setting::plane_strain;
   auto sys = test::make_block<2>(spec);
   CrackSurface<2> crack{{Vec<2>(9.5, 8.2), Vec<2>(9.5, 10.8)}};
   cut_bonds<2>(sys, crack);

@@ -14,6 +14,7 @@
 #include "solver/sim/mpm_setup.hpp"
 #include "solver/sim/pd_setup.hpp"
 #include "solver/time/velocity_verlet.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm::pd {
 namespace {
@@ -23,36 +24,19 @@ using core::ParticleKind;
 // ν for a plane-stress plate: a pair potential's fixed value, else 0.3 (MPM too).
 std::string poisson_text(const std::string& model) {
   const auto* info = find_model(model);
-  const auto nu = info ? info->fixed_poisson(Setting::plane_stress) : std::nullopt;
+  const auto nu = info ? info->fixed_poisson(core::Setting::plane_stress) : std::nullopt;
   return nu ? fmt::format("{}", *nu) : "0.3";
 }
 
-// The same free 2D steel plate for both methods; `model` is "lps", "pmb" or "mpm".
-io::Scene plate(const std::string& model, const std::string& extra = "", double length = 0.03) {
-  return io::parse_scene_text(R"(
-[scene]
-id = "mixed"
-[discretization]
-dimension = 2
-plane = "stress"
-spacing = 1e-3
-horizon_ratio = 3.015
-thickness = 1e-3
-[[shape]]
-type = "rectangle"
-min = [0, 0]
-max = [)" + std::to_string(length) + R"(, 0.012]
-[material]
-density = 7850
-youngs_modulus = 200e9
-poissons_ratio = )" + poisson_text(model) + R"(
-)" + extra + R"(
-[model]
-type = ")" + model + R"("
-[time]
-steps = 1
-)",
-                              "mixed.toml");
+// The same free 2D steel plate for both methods; `model` is "lps", "pmb" or "mpm";
+// `material_keys` go into [material].
+io::Scene plate(const std::string& model, const std::string& material_keys = "", double length = 0.03) {
+  return test::SceneText{.id = "mixed",
+                         .max = {length, 0.012},
+                         .poissons_ratio = poisson_text(model),
+                         .material_keys = material_keys,
+                         .model = model}
+      .parse("mixed.toml");
 }
 
 // A smooth stretch and velocity field, so every particle feels a force.

@@ -16,17 +16,13 @@
 #include "solver/io/scene.hpp"
 #include "solver/sim/run.hpp"
 #include "verification/support/fields_reader.hpp"
+#include "verification/support/scene_text.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm::sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("pdmpm_mpm_run_" + name);
-  fs::remove_all(dir);
-  return dir;
-}
 
 // The last row of history.csv, by column name.
 std::map<std::string, double> last_history_row(const fs::path& csv) {
@@ -55,7 +51,8 @@ RunResult run(const io::Scene& scene, const fs::path& out) {
 // A/A₀ = exp(−2νσ/E − ε_p) (plane stress: width and thickness both shrink).
 TEST(MpmRun, PlateTensionSceneFollowsTheBilinearCurve) {
   const auto scene = io::parse_scene(std::string(PDMPM_SOURCE_DIR) + "/verification/scenes/mpm/plate_tension_j2.toml");
-  const auto out = fresh_dir("plate");
+  const test::ScratchDir scratch("mpm_run");
+  const auto out = scratch.fresh("plate");
   const auto r = run(scene, out);
   ASSERT_EQ(r.exit_code, 0) << r.message;
   EXPECT_EQ(r.summary["solver"], "mpm");
@@ -90,27 +87,23 @@ TEST(MpmRun, PlateTensionSceneFollowsTheBilinearCurve) {
   EXPECT_NEAR(mean, 1.0 / 3.0, 0.01);  // 0.01: end effects at the pulled face
 }
 
+// A 20 mm × 10 mm plate fixed on the left, a 10 MPa traction on the right; the
+// traction's region (and layer) from `layer_and_region`.
 io::Scene traction_plate(const std::string& layer_and_region) {
-  return io::parse_scene_text(R"(
-[scene]
-id = "mpm_traction"
-[discretization]
-dimension = 2
-plane = "stress"
-spacing = 0.5e-3
-thickness = 3e-3
-[[shape]]
-type = "rectangle"
-min = [0.0, 0.0]
-max = [0.02, 0.01]
-[material]
-density = 7800
-youngs_modulus = 200e9
-poissons_ratio = 0.3
-[model]
-type = "mpm"
+  return test::SceneText{.id = "mpm_traction",
+                         .spacing = 0.5e-3,
+                         .horizon_ratio = 0.0,
+                         .thickness = 3e-3,
+                         .max = {0.02, 0.01},
+                         .density = 7800,
+                         .model = "mpm",
+                         .time = "end_time = 2e-4",
+                         .tables = R"(
 [mpm]
 damping_local = 0.3
+[output]
+frames = 2
+fields = ["stress"]
 [[boundary]]
 name = "left"
 kind = "fixed"
@@ -119,14 +112,8 @@ region = { type = "box", min = [-1.0, -1.0], max = [0.0, 1.0] }
 name = "right"
 kind = "traction"
 value = ["10e6", "0"]
-)" + layer_and_region + R"(
-[time]
-end_time = 2e-4
-[output]
-frames = 2
-fields = ["stress"]
-)",
-                              "traction_plate.toml");
+)" + layer_and_region}
+      .parse("traction_plate.toml");
 }
 
 // A 10 MPa traction on the right face, applied on one particle column (default
@@ -141,9 +128,10 @@ TEST(MpmRun, TractionLayerCarriesTheSameForce) {
   const std::map<std::string, Case> cases{
       {"one_column", {"region = { type = \"box\", min = [0.0195, 0.0], max = [0.02, 0.01] }", 0.01975}},
       {"two_columns", {"layer = 1e-3\nregion = { type = \"box\", min = [0.019, 0.0], max = [0.02, 0.01] }", 0.0195}}};
+  const test::ScratchDir scratch("mpm_run_traction");
   for (const auto& [name, c] : cases) {
     const std::string& spec = c.spec;
-    const auto out = fresh_dir(name);
+    const auto out = scratch.fresh(name);
     const auto r = run(traction_plate(spec), out);
     ASSERT_EQ(r.exit_code, 0) << r.message;
     const auto h = last_history_row(out / "history.csv");
@@ -171,7 +159,8 @@ TEST(MpmRun, ABoundaryWithoutGridNodesIsAnInputErrorAndWritesNothing) {
   auto scene = traction_plate("region = { type = \"box\", min = [0.0195, 0.0], max = [0.02, 0.01] }");
   scene.boundaries[0].region[0].max = {0.0005, 1.0};
   scene.boundaries[0].region[0].min = {0.0002, -1.0};
-  const auto out = fresh_dir("no_nodes");
+  const test::ScratchDir scratch("mpm_run_no_nodes");
+  const auto out = scratch.fresh("no_nodes");
   try {
     run(scene, out);
     FAIL() << "expected an InputError";

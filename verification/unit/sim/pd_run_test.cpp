@@ -10,6 +10,8 @@
 
 #include "solver/io/scene.hpp"
 #include "solver/sim/run.hpp"
+#include "verification/support/scene_text.hpp"
+#include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -18,31 +20,19 @@ namespace fs = std::filesystem;
 
 // A notched strip pulled apart fast enough to crack within a few hundred steps.
 io::Scene pulled_strip() {
-  return io::parse_scene_text(R"(
-[scene]
-id = "strip"
-[discretization]
-dimension = 2
-plane = "strain"
-spacing = 1e-3
-horizon_ratio = 3.015
-thickness = 1e-3
-[[shape]]
-type = "rectangle"
-min = [0, 0]
-max = [0.04, 0.02]
+  test::SceneText t;
+  t.id = "strip";
+  t.plane = "strain";
+  t.max = {0.04, 0.02};
+  t.density = 2500;
+  t.youngs_modulus = 50e9;
+  t.poissons_ratio = "0.25";
+  t.material_keys = "critical_stretch = 0.002";
+  t.time = "steps = 400";
+  t.tables = R"(
 [[precrack]]
 from = [0.0, 0.0105]
 to = [0.008, 0.0105]
-[material]
-density = 2500
-youngs_modulus = 50e9
-poissons_ratio = 0.25
-critical_stretch = 0.002
-[model]
-type = "lps"
-[time]
-steps = 400
 [[boundary]]
 name = "bottom"
 kind = "velocity"
@@ -62,14 +52,14 @@ point = [0.012, 0.0105]
 frame_times = [0.0, 1e-6, 1e-3]
 history_every = 5
 fields = ["damage"]
-)",
-                              "strip.toml");
+)";
+  return t.parse("strip.toml");
 }
 
 TEST(PdRun, CrackObservablesReachHistoryAndSummary) {
   const auto scene = pulled_strip();
-  const fs::path dir = fs::temp_directory_path() / "pdmpm_pd_run_test";
-  fs::remove_all(dir);
+  const test::ScratchDir scratch("pd_run");
+  const fs::path dir = scratch.fresh("out");
   RunOptions o;
   o.out_dir = dir;
   o.threads = 1;
@@ -108,7 +98,6 @@ TEST(PdRun, CrackObservablesReachHistoryAndSummary) {
   std::size_t frames = 0;
   for (std::size_t pos = text.find("<Time "); pos != std::string::npos; pos = text.find("<Time ", pos + 1)) ++frames;
   EXPECT_EQ(frames, 3u);
-  fs::remove_all(dir);
 }
 
 }  // namespace

@@ -16,7 +16,7 @@ TEST(StableStep, OneDimensionalChainMatchesTheAnalyticLimit) {
   test::BlockSpec spec;
   spec.sites = 400;
   spec.spacing = 1e-3;
-  spec.setting = pd::Setting::bar1d;
+  spec.setting = core::Setting::bar1d;
   spec.horizon_ratio = 1.5;
   spec.partial_volume = pd::PartialVolume::none;
   spec.measure = 1e-6;
@@ -38,7 +38,7 @@ TEST(StableStep, SillingAskariNeverExceedsThePowerIterationLimit) {
     test::BlockSpec spec;
     spec.sites = dim == 2 ? 20 : 9;
     if (dim == 2) {
-      spec.setting = pd::Setting::plane_strain;
+      spec.setting = core::Setting::plane_strain;
       auto sys = test::make_block<2>(spec);
       pd::Pmb<2> m;
       m.initialise(sys);

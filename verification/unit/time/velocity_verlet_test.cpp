@@ -7,34 +7,14 @@
 
 #include "solver/io/scene.hpp"
 #include "solver/time/stable_step.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm::time {
 namespace {
 
-io::Scene free_plate(const std::string& extra = "") {
-  return io::parse_scene_text(R"(
-[scene]
-id = "free"
-[discretization]
-dimension = 2
-plane = "stress"
-spacing = 1e-3
-horizon_ratio = 3.015
-thickness = 1e-3
-[[shape]]
-type = "rectangle"
-min = [0, 0]
-max = [0.03, 0.015]
-[material]
-density = 7850
-youngs_modulus = 200e9
-poissons_ratio = 0.3
-[model]
-type = "lps"
-[time]
-steps = 1
-)" + extra,
-                              "free.toml");
+// A free 30 mm × 15 mm steel plate (LPS, plane stress) with `tables` added.
+io::Scene free_plate(const std::string& tables = "") {
+  return test::SceneText{.id = "free", .tables = tables}.parse("free.toml");
 }
 
 // A free plate with a smooth initial velocity field: momentum stays at round-off

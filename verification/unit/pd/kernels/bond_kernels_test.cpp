@@ -46,7 +46,7 @@ struct Body {
   explicit Body(bool uniform_volume) {
     test::BlockSpec spec;
     spec.sites = D == 1 ? 40 : D == 2 ? 14 : 8;
-    spec.setting = D == 1 ? Setting::bar1d : D == 2 ? Setting::plane_strain : Setting::solid3d;
+    spec.setting = D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_strain : core::Setting::solid3d;
     spec.measure = D == 3 ? 1.0 : 1e-3;
     sys = test::make_block<D>(spec);
     auto& p = sys.particles;
