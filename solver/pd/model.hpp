@@ -41,6 +41,14 @@ class Model {
   // Row sum Σ_j V_j C_ij of the bond stiffness of particle i (Silling & Askari 2005);
   // negative if the model has no such bound.
   virtual double stiffness_row_sum(const System<D>& sys, Index i) const { (void)sys; (void)i; return -1.0; }
+  // Model state beyond the bond flags (plastic models), trial/committed like them:
+  // accept() commits what the last evaluation wrote, reject() returns to the last commit.
+  virtual void accept() {}
+  virtual void reject() {}
+  // Plastic models: equivalent plastic strain per real particle and the plastic work
+  // so far (J); nullptr and 0 for elastic ones.
+  virtual const std::vector<double>* eq_plastic_strain() const { return nullptr; }
+  virtual double plastic_work() const { return 0.0; }
 };
 
 // One row of the model table: what a scene, a run and a test need to know of a

@@ -74,8 +74,14 @@ class Simulation {
   void drift(double dt);
 
   // The bond state the last evaluations wrote becomes committed / is dropped.
-  void accept() { sys_.bonds.accept(); }
-  void reject() { sys_.bonds.reject(); }
+  void accept() {
+    sys_.bonds.accept();
+    model_.accept();
+  }
+  void reject() {
+    sys_.bonds.reject();
+    model_.reject();
+  }
 
   double kinetic_energy() const;
   double internal_energy() const;  // from the last internal_forces(true)

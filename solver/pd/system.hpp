@@ -4,6 +4,7 @@
 // the PD force loops visit (owners) follows the particles' kinds.
 #include <algorithm>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "solver/core/families.hpp"
@@ -28,6 +29,7 @@ struct System {
 
   core::Setting setting = core::Setting::solid3d;
   core::Elastic material;
+  std::optional<core::J2Hardening> hardening;  // plastic models; none: elastic
   double delta = 0.0;    // horizon δ
   double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
   Influence influence = Influence::constant;

@@ -1,0 +1,67 @@
+#pragma once
+// Elastoplastic ordinary state-based PD: the LPS solid with von Mises plasticity and
+// linear isotropic hardening in equivalent plastic strain (docs/models/lps_plastic.md).
+// The deviatoric return on the force state follows Mitchell 2011; the norm, the
+// flow rule and the hardening variable are chosen so that any homogeneous state
+// follows the classical J2 law exactly. 3D (small strain, any influence function ω):
+//
+//   t_ij   = ω (A θ_i |ξ| + B (e_ij − p_ij)) / m_i          (LPS with a plastic extension p)
+//   t^d_ij = (B/m_i) ω ε_ij,  ε = e^d − p,  e^d = e − θ|ξ|/3  (deviatoric force state)
+//   ‖t‖²_ω = Σ_j (t_ij²/ω) β V_j                             (ω-weighted norm)
+//
+// For a homogeneous deviatoric strain ∫ ω r² (n·ε·n)² dV = (2/15) m ε:ε, so
+// ‖t^d‖²_ω = 5 σ_eq² / m with σ_eq the classical von Mises stress: the PD equivalent
+// stress is σ̄_i = √(m_i/5) ‖t^d‖_ω. Yield: σ̄ ≤ σ_y + H ε̄_p, H = E E_t/(E − E_t).
+// Flow Δp = Δλ t^d/ω (weighted by 1/ω so the return is radial for every ω), and the
+// dissipation Σ t^d Δp β V = σ̄ Δε̄_p defines ε̄_p. Backward Euler then gives the
+// classical radial return: Δε̄_p = (σ̄_tr − σ_y − H ε̄_n)/(3G + H) with 3G = B/5,
+// and ε scales by r = 1 − 3G Δε̄_p/σ̄_tr. Plastic flow is deviatoric: p of a
+// homogeneous plastic strain adds nothing to θ.
+//
+// State: p per bond side and ε̄_p per particle, trial/committed (accept/reject).
+// 3D only so far: the 2D settings need the out-of-plane plastic strain (not a PD
+// degree of freedom) and are refused with a clear message. No ghost particles
+// (symmetry planes): the reverse bond of a ghost is not in any family.
+#include <optional>
+
+#include "solver/pd/constants.hpp"
+#include "solver/pd/model.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+class LpsPlastic final : public Model<D> {
+ public:
+  std::string name() const override { return "lps_plastic"; }
+  void initialise(const System<D>& sys) override;
+  void refresh(const System<D>& sys, const std::vector<Index>& changed) override;
+  std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) override;
+  void dilatation(const System<D>& sys, std::vector<double>& theta) const override;
+  double stiffness_row_sum(const System<D>& sys, Index i) const override;
+  void accept() override;
+  void reject() override;
+  const std::vector<double>* eq_plastic_strain() const override { return &eq_plastic_.trial; }
+  double plastic_work() const override { return plastic_work_trial_; }
+
+  // Stress of particle i from its own force state, Σ_j t_ij (ξ ⊗ y/|y|) β V_j
+  // (= λθI + 2Gε for an elastic homogeneous state), from the last evaluation.
+  Mat<D> force_state_stress(const System<D>& sys, Index i) const;
+  // σ̄_i of the last evaluation.
+  double equivalent_stress(Index i) const { return sigma_eq_[i]; }
+
+ private:
+  LpsCoefficients k_{};
+  std::optional<core::J2Hardening> hardening_;  // none: never yields
+  double three_g_ = 0.0, plastic_modulus_ = 0.0;
+  std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
+  std::vector<BondIndex> reverse_;         // bond j→i of each bond i→j
+  Committed<double> plastic_ext_;          // p per bond side
+  Committed<double> eq_plastic_;           // ε̄_p per particle
+  std::vector<double> dissipation_;        // V_i σ̄ Δε̄_p of the last evaluation (J)
+  double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
+  std::vector<double> sigma_eq_;           // σ̄ per particle, last evaluation
+
+  void return_map(const System<D>& sys, Index i);
+};
+
+}  // namespace pdmpm::pd

@@ -1,0 +1,172 @@
+// Elastoplastic LPS (3D): below yield it is elastic LPS; a homogeneous uniaxial
+// stress path follows the classical bilinear J2 curve (loading, yield, hardening,
+// elastic unloading); plastic flow is isochoric; reject() restores the plastic state.
+// Small strains (ε_y = 1e-5) isolate the constitutive algorithm from the bond
+// kinematics' geometric nonlinearity, which is O(ε²).
+#include "solver/pd/lps_plastic.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "solver/pd/lps.hpp"
+#include "verification/support/pd_fixtures.hpp"
+
+namespace pdmpm::pd {
+namespace {
+
+const core::Elastic kSteel{215e9, 0.33, 7800.0};
+const double kYield = 2.15e6;                                      // σ_y = 1e-5 E
+const core::J2Hardening kHardening{kYield, 20e9};  // E_t ≈ E/11: hardening visible on the scale of σ_y
+
+// 15³ sites: the centre is ≥ 2δ from every face, so its state is exactly homogeneous.
+System<3> block() {
+  test::BlockSpec spec;
+  spec.sites = 15;
+  spec.material = kSteel;
+  auto sys = test::make_block<3>(spec);
+  sys.hardening = kHardening;
+  return sys;
+}
+
+Index centre(const System<3>& sys) {
+  Index best = 0;
+  const Vec<3> c = Vec<3>::Constant(7e-3);
+  for (Index i = 0; i < sys.n_real(); ++i)
+    if ((sys.particles.x0[i] - c).norm() < (sys.particles.x0[best] - c).norm()) best = i;
+  return best;
+}
+
+void apply_affine(System<3>& sys, const Mat<3>& H) {
+  for (Index i = 0; i < sys.n_real(); ++i) sys.particles.u[i] = H * sys.particles.x0[i];
+}
+
+TEST(LpsPlastic, BelowYieldItIsElasticLps) {
+  auto plastic_sys = block(), elastic_sys = block();
+  LpsPlastic<3> plastic;
+  Lps<3> elastic;
+  plastic.initialise(plastic_sys);
+  elastic.initialise(elastic_sys);
+  for (Index i = 0; i < plastic_sys.n_real(); ++i) {
+    const Vec<3> x = plastic_sys.particles.x0[i];
+    const Vec<3> u(1e-10 * std::sin(x[1] * 700.0), 2e-10 * std::cos(x[2] * 500.0), 1e-10 * x[0] * x[1] * 1e3);
+    plastic_sys.particles.u[i] = elastic_sys.particles.u[i] = u;
+  }
+  plastic.compute_forces(plastic_sys, {});
+  elastic.compute_forces(elastic_sys, {});
+  double fmax = 0.0, diff = 0.0;
+  for (Index i = 0; i < plastic_sys.n_real(); ++i) {
+    fmax = std::max(fmax, elastic_sys.particles.f[i].norm());
+    diff = std::max(diff, (plastic_sys.particles.f[i] - elastic_sys.particles.f[i]).norm());
+  }
+  EXPECT_GT(fmax, 0.0);
+  // 1e-12: the same sums in another order (the elastic kernel sums in 8 SIMD lanes).
+  EXPECT_LT(diff, 1e-12 * fmax);
+  EXPECT_EQ((*plastic.eq_plastic_strain())[centre(plastic_sys)], 0.0);
+}
+
+// Finds the lateral strain that makes σ_yy = 0 at the centre (secant), evaluates
+// the trial state there and returns σ.
+Mat<3> uniaxial_stress(System<3>& sys, LpsPlastic<3>& model, Index c, double eps, double& lateral) {
+  auto sigma_at = [&](double l) {
+    apply_affine(sys, Vec<3>(eps, l, l).asDiagonal());
+    model.compute_forces(sys, {});
+    return model.force_state_stress(sys, c);
+  };
+  double l0 = lateral, l1 = lateral - 0.33 * 1e-7;
+  double f0 = sigma_at(l0)(1, 1), f1 = sigma_at(l1)(1, 1);
+  for (int it = 0; it < 50 && std::abs(f1) > 1e-9 * kYield && f1 != f0; ++it) {
+    const double l2 = l1 - f1 * (l1 - l0) / (f1 - f0);
+    l0 = l1, f0 = f1, l1 = l2;
+    f1 = sigma_at(l1)(1, 1);
+  }
+  lateral = l1;
+  return sigma_at(l1);
+}
+
+// Uniaxial stress along a lattice axis. What is exact on the lattice: the return
+// (σ̄ = σ_y + H ε̄_p on the yield surface), the volumetric response (tr σ = 3Kθ: the
+// second moments of a cubic lattice are isotropic, so isochoric flow leaves θ elastic),
+// elastic unloading and reloading. What is not: the lattice's fourth bond moments are
+// cubic, not isotropic (δ = 3.015Δx, ω = 1: Σ ωβV r² n_x⁴ / m = 0.189, continuum 1/5), so
+// the [100] response of LPS itself — elastic or plastic — is not the isotropic one
+// (measured: E_[100] = 0.886 E, ν_[100] = 0.349). The comparison with the analytic J2
+// curve waits for an isotropy correction (docs/models/lps_plastic.md).
+TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
+  auto sys = block();
+  LpsPlastic<3> model;
+  model.initialise(sys);
+  const Index c = centre(sys);
+  const double E = kSteel.E, K = kSteel.bulk(), ey = kYield / E;
+  const double H = kHardening.hardening_modulus(E);
+  double lateral = 0.0, worst_surface = 0.0, worst_volume = 0.0, first_slope = 0.0;
+  bool yielded = false;
+  const int n = 100;
+  for (int k = 1; k <= n; ++k) {
+    const double eps = 10.0 * ey * k / n;  // to ε = 10 σ_y/E
+    const Mat<3> s = uniaxial_stress(sys, model, c, eps, lateral);
+    model.accept();
+    if (k == 1) first_slope = s(0, 0) / eps;
+    const double ep = (*model.eq_plastic_strain())[c], seq = model.equivalent_stress(c);
+    if (ep > 0.0) {
+      yielded = true;
+      worst_surface = std::max(worst_surface, std::abs(seq - (kYield + H * ep)) / kYield);
+    } else {
+      EXPECT_LE(seq, kYield * (1.0 + 1e-12)) << "elastic beyond the yield surface at ε = " << eps;
+    }
+    std::vector<double> theta;
+    model.dilatation(sys, theta);
+    worst_volume = std::max(worst_volume, std::abs(3.0 * K * theta[c] - s.trace()) / kYield);
+  }
+  EXPECT_TRUE(yielded);
+  EXPECT_LT(worst_surface, 1e-12) << "σ̄ − (σ_y + H ε̄_p) on the yield surface, / σ_y";
+  // 1e-8: the lateral strain is solved to |σ_yy| < 1e-9 σ_y, and the bond kinematics (y/|y| in σ,
+  // e in θ) differ at O(ε) = 1e-4 of the elastic part (measured 4.6e-9).
+  EXPECT_LT(worst_volume, 1e-8) << "tr σ − 3Kθ, / σ_y (isochoric flow)";
+
+  // Unloading is elastic with the initial slope; reloading below the peak does not yield.
+  const double peak = 10.0 * ey;
+  const Mat<3> s_peak = uniaxial_stress(sys, model, c, peak, lateral);
+  model.accept();
+  const double ep_peak = (*model.eq_plastic_strain())[c];
+  const Mat<3> s_back = uniaxial_stress(sys, model, c, peak - 2.0 * ey, lateral);
+  model.accept();
+  EXPECT_EQ((*model.eq_plastic_strain())[c], ep_peak) << "unloading must not flow";
+  // 1e-3: the elastic slope changes at O(ε) = 1e-4 with the bond kinematics' nonlinearity (measured 9.6e-5).
+  EXPECT_NEAR((s_peak(0, 0) - s_back(0, 0)) / (2.0 * ey) / first_slope, 1.0, 1e-3) << "unloading slope";
+  uniaxial_stress(sys, model, c, peak - 0.5 * ey, lateral);
+  model.accept();
+  EXPECT_EQ((*model.eq_plastic_strain())[c], ep_peak) << "reload below the peak must not yield";
+  // The measured lattice anisotropy (documented; not a claim about J2): E_[100] / E.
+  EXPECT_NEAR(first_slope / E, 0.886, 0.002);
+}
+
+TEST(LpsPlastic, RejectRestoresThePlasticState) {
+  auto sys = block();
+  LpsPlastic<3> model;
+  model.initialise(sys);
+  const Index c = centre(sys);
+  apply_affine(sys, Vec<3>(20e-5, -10e-5, -10e-5).asDiagonal());  // 20 × ε_y: plastic
+  model.compute_forces(sys, {});
+  EXPECT_GT((*model.eq_plastic_strain())[c], 0.0);
+  EXPECT_GT(model.plastic_work(), 0.0);
+  model.reject();
+  EXPECT_EQ((*model.eq_plastic_strain())[c], 0.0);
+  EXPECT_EQ(model.plastic_work(), 0.0);
+  model.compute_forces(sys, {});
+  model.accept();
+  const double ep = (*model.eq_plastic_strain())[c];
+  model.compute_forces(sys, {});  // the same state again: already on the yield surface
+  EXPECT_NEAR((*model.eq_plastic_strain())[c], ep, 1e-12 * ep);
+}
+
+TEST(LpsPlastic, RefusesWhatItDoesNotSupport) {
+  test::BlockSpec spec;
+  spec.setting = core::Setting::plane_strain;
+  auto sys = test::make_block<2>(spec);
+  LpsPlastic<2> model;
+  EXPECT_THROW(model.initialise(sys), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace pdmpm::pd
