@@ -21,10 +21,12 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   three_g_ = k_.B / 5.0;  // 3D: B = 15G
   plastic_modulus_ = hardening_ ? hardening_->hardening_modulus(sys.material.E) : 0.0;
   const Index n = sys.particles.n_real;
+  shell_ = isotropy_weights(sys);
   m_ = reference_weighted_volumes(sys);
   m_.resize(n);
   inv_m_.resize(n);
-  for (Index i = 0; i < n; ++i) inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;
+  inv_md_.resize(n);
+  for (Index i = 0; i < n; ++i) set_weighted_volumes(sys, i);
   theta_.assign(n, 0.0);
   sigma_eq_.assign(n, 0.0);
   dissipation_.assign(n, 0.0);
@@ -51,8 +53,44 @@ template <int D>
 void LpsPlastic<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
   for (Index i : changed) {
     m_[i] = pd::weighted_volume(sys, i, BondSet::reference);
-    inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;
+    set_weighted_volumes(sys, i);
   }
+}
+
+template <int D>
+void LpsPlastic<D>::set_weighted_volumes(const System<D>& sys, Index i) {
+  double md = 0.0;
+  sys.for_each_bond(i, BondSet::reference, [&](BondIndex, Index j, int k) {
+    md += sys.table.weight[k] * shell_[k] * sys.table.length[k] * sys.table.length[k] * sys.particles.volume[j];
+  });
+  inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;  // a particle without bonds feels no force
+  inv_md_[i] = md > 0.0 ? 1.0 / md : 0.0;
+}
+
+// c per stencil offset: 1, or 1 + κ g(n) with κ solving a(κ) = 3 b(κ) for the full
+// stencil, a = Σ w r² c n_x⁴ and b = Σ w r² c n_x² n_y² (w = ωβ; isotropy of a cubic
+// fourth-order tensor: a = 3b). Linear in κ: κ = (3 B_xy − A_x) / (A_xg − 3 B_xyg).
+template <int D>
+std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
+  const auto& t = sys.table;
+  const int n_shapes = sys.families.stencil.size();
+  std::vector<double> c(n_shapes, 1.0);
+  if constexpr (D != 3) return c;  // 3D only (initialise refuses the others)
+  if (!sys.isotropic_deviatoric) return c;
+  std::vector<double> g(n_shapes);
+  double ax = 0.0, axg = 0.0, bxy = 0.0, bxyg = 0.0;
+  for (int k = 0; k < n_shapes; ++k) {
+    const Vec<D> nk = t.xi[k] / t.length[k];
+    g[k] = nk.array().pow(4).sum() - 0.6;
+    const double w = t.weight[k] * t.length[k] * t.length[k];
+    const double x4 = std::pow(nk[0], 4), x2y2 = nk[0] * nk[0] * nk[1] * nk[1];
+    ax += w * x4, axg += w * x4 * g[k], bxy += w * x2y2, bxyg += w * x2y2 * g[k];
+  }
+  const double kappa = (3.0 * bxy - ax) / (axg - 3.0 * bxyg);
+  for (int k = 0; k < n_shapes; ++k) c[k] = 1.0 + kappa * g[k];
+  if (*std::min_element(c.begin(), c.end()) <= 0.0)
+    throw std::invalid_argument("lps_plastic: the isotropy correction would make a bond weight ≤ 0 for this stencil");
+  return c;
 }
 
 // Radial return of particle i's deviatoric force state (reads the committed
@@ -62,14 +100,13 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   const auto& p = sys.particles;
   const auto& t = sys.table;
   const double gamma = k_.gamma, theta = theta_[i];
-  double norm2 = 0.0;  // Σ ω β V ε²
+  double norm2 = 0.0;  // Σ ω β c V ε²
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
     const double eps = e - gamma * theta * t.length[k] - plastic_ext_.committed[b];
-    norm2 += t.weight[k] * p.volume[j] * eps * eps;
+    norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
-  const double q = k_.B * inv_m_[i];
-  const double trial = q * std::sqrt(m_[i] / 5.0 * norm2);  // σ̄ of the trial state
+  const double trial = k_.B * std::sqrt(inv_md_[i] / 5.0 * norm2);  // σ̄ = (B/m_d) √(m_d/5 · Σ ωβcV ε²)
   const double ep_n = eq_plastic_.committed[i];
   const double radius = hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n
                                    : std::numeric_limits<double>::infinity();
@@ -120,7 +157,7 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   for (Index k = 0; k < n_owners; ++k) return_map(sys, a.fam.particle(k));
 
   // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|.
-  const double A = k_.A, B = k_.B, gamma = k_.gamma, kappa = k_.kappa;
+  const double B = k_.B, gamma = k_.gamma, kappa = k_.kappa;
   std::int64_t broken_after = 0;
 #pragma omp parallel for schedule(static) reduction(+ : broken_after)
   for (Index k = 0; k < n_owners; ++k) {
@@ -130,16 +167,15 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
     sys.for_each_live_bond(i, [&](BondIndex b, Index j, int s) {
       const auto g = deform<D>(t.xi[s], t.length[s], p.u[j] - p.u[i]);
       const double L = t.length[s];
-      const double tij = (A * theta_[i] * L + B * (g.e - plastic_ext_.trial[b])) * inv_m_[i];
-      const double tji = (A * theta_[j] * L + B * (g.e - plastic_ext_.trial[reverse_[b]])) * inv_m_[j];
+      const double tij = scalar_force_state(i, b, s, g.e, L), tji = scalar_force_state(j, reverse_[b], s, g.e, L);
       f += t.weight[s] * p.volume[j] * (tij + tji) / g.l * g.y;
       if (req.energy) {
         const double eps = g.e - gamma * theta_[i] * L - plastic_ext_.trial[b];
-        dev += t.weight[s] * p.volume[j] * eps * eps;
+        dev += t.weight[s] * shell_[s] * p.volume[j] * eps * eps;
       }
     });
     p.f[i] = f;
-    if (req.energy) (*req.energy)[i] = 0.5 * kappa * theta_[i] * theta_[i] + 0.5 * B * inv_m_[i] * dev;
+    if (req.energy) (*req.energy)[i] = 0.5 * kappa * theta_[i] * theta_[i] + 0.5 * B * inv_md_[i] * dev;
     // Break-after-force rule (LAMMPS): i's side only, whose flags nobody else reads in this pass.
     if (req.break_bonds && req.break_after_force)
       for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
@@ -182,13 +218,23 @@ void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta)
 
 template <int D>
 double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
-  // The elastic LPS bound (plastic flow only softens the bonds).
-  const double coef = k_.B + k_.d * std::abs(k_.A);
+  // The elastic bound (plastic flow only softens the bonds): the direct term B c ω β (1/m_d,i + 1/m_d,j)
+  // plus the dilatation coupling d (3K + B c/3) ω β (1/m_i + 1/m_j).
+  const double threeK = 3.0 * k_.kappa;
   double sum = 0.0;
   sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
-    sum += coef * (inv_m_[i] + inv_m_[j]) * sys.table.weight[k] * sys.particles.volume[j];
+    const double c = shell_[k];
+    sum += (k_.B * c * (inv_md_[i] + inv_md_[j]) + k_.d * (threeK + k_.B * c / 3.0) * (inv_m_[i] + inv_m_[j])) *
+           sys.table.weight[k] * sys.particles.volume[j];
   });
   return sum;
+}
+
+// t_ij / (ωβ): 3K θ_i |ξ| / m_i + c B (e − θ_i|ξ|/3 − p_ij) / m_d,i, with p from the trial state.
+template <int D>
+double LpsPlastic<D>::scalar_force_state(Index i, BondIndex b, int k, double e, double L) const {
+  return 3.0 * k_.kappa * theta_[i] * L * inv_m_[i] +
+         shell_[k] * k_.B * (e - k_.gamma * theta_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
 }
 
 template <int D>
@@ -198,7 +244,7 @@ Mat<D> LpsPlastic<D>::force_state_stress(const System<D>& sys, Index i) const {
   Mat<D> s = Mat<D>::Zero();
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const auto g = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
-    const double tij = (k_.A * theta_[i] * t.length[k] + k_.B * (g.e - plastic_ext_.trial[b])) * inv_m_[i];
+    const double tij = scalar_force_state(i, b, k, g.e, t.length[k]);
     s += t.weight[k] * p.volume[j] * tij / g.l * (g.y * t.xi[k].transpose());
   });
   return s;

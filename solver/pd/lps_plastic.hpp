@@ -5,9 +5,10 @@
 // flow rule and the hardening variable are chosen so that any homogeneous state
 // follows the classical J2 law exactly. 3D (small strain, any influence function ω):
 //
-//   t_ij   = ω (A θ_i |ξ| + B (e_ij − p_ij)) / m_i          (LPS with a plastic extension p)
-//   t^d_ij = (B/m_i) ω ε_ij,  ε = e^d − p,  e^d = e − θ|ξ|/3  (deviatoric force state)
+//   t_ij   = ω (3K θ_i |ξ|)/m_i + t^d_ij                    (LPS with a plastic extension p)
+//   t^d_ij = (B/m_i) ω ε_ij,  ε = e^d − p,  e^d = e − θ|ξ|/3  (deviatoric force state, B = 15G)
 //   ‖t‖²_ω = Σ_j (t_ij²/ω) β V_j                             (ω-weighted norm)
+// (with p = 0 this is LPS: 3Kθ|ξ|/m + B(e − θ|ξ|/3)/m = ((3K − 5G)θ|ξ| + 15G e)/m).
 //
 // For a homogeneous deviatoric strain ∫ ω r² (n·ε·n)² dV = (2/15) m ε:ε, so
 // ‖t^d‖²_ω = 5 σ_eq² / m with σ_eq the classical von Mises stress: the PD equivalent
@@ -17,6 +18,13 @@
 // classical radial return: Δε̄_p = (σ̄_tr − σ_y − H ε̄_n)/(3G + H) with 3G = B/5,
 // and ε scales by r = 1 − 3G Δε̄_p/σ̄_tr. Plastic flow is deviatoric: p of a
 // homogeneous plastic strain adds nothing to θ.
+//
+// Optional isotropy correction (System::isotropic_deviatoric): on a cubic lattice the
+// fourth bond moment Σ ωβV r² n⊗n⊗n⊗n is cubic, not isotropic, so the deviatoric
+// response depends on direction (E_[100] = 0.886 E at δ = 3.015Δx, ω = 1). Weighting the
+// deviatoric term of each bond by c(n) = 1 + κ g(n), g = n_x⁴ + n_y⁴ + n_z⁴ − 3/5, with κ
+// from the full stencil's moments, and replacing m by m_d = Σ ωβc r² V there, makes it
+// isotropic for every interior particle; ω becomes ωc in the norm and the flow rule.
 //
 // State: p per bond side and ε̄_p per particle, trial/committed (accept/reject).
 // 3D only so far: the 2D settings need the out-of-plane plastic strain (not a PD
@@ -54,6 +62,8 @@ class LpsPlastic final : public Model<D> {
   std::optional<core::J2Hardening> hardening_;  // none: never yields
   double three_g_ = 0.0, plastic_modulus_ = 0.0;
   std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
+  std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
+  std::vector<double> shell_;              // c per stencil offset (1 without the isotropy correction)
   std::vector<BondIndex> reverse_;         // bond j→i of each bond i→j
   Committed<double> plastic_ext_;          // p per bond side
   Committed<double> eq_plastic_;           // ε̄_p per particle
@@ -62,6 +72,9 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> sigma_eq_;           // σ̄ per particle, last evaluation
 
   void return_map(const System<D>& sys, Index i);
+  void set_weighted_volumes(const System<D>& sys, Index i);
+  static std::vector<double> isotropy_weights(const System<D>& sys);
+  double scalar_force_state(Index i, BondIndex b, int k, double e, double L) const;
 };
 
 }  // namespace pdmpm::pd

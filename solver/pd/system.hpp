@@ -37,6 +37,10 @@ struct System {
   // LPS weighted volume: false → the discrete sum over each family (docs/models/lps.md; exact
   // patch tests), true → the continuum integral for every particle (Gu & Zhou 2017 eq 15).
   bool continuum_weighted_volume = false;
+  // Plastic LPS: weight each bond's deviatoric term by c(n) = 1 + κ(n_x⁴ + n_y⁴ + n_z⁴ − 3/5),
+  // κ chosen so the full stencil's fourth bond moment is isotropic (docs/models/lps_plastic.md);
+  // false: the plain lattice sums, whose deviatoric response is cubic.
+  bool isotropic_deviatoric = false;
 
   double spacing() const { return particles.lattice.spacing; }
   Index n_real() const { return particles.n_real; }
