@@ -12,13 +12,17 @@ namespace pdmpm::pd {
 
 template <int D>
 void LpsPlastic<D>::initialise(const System<D>& sys) {
-  if (sys.setting != core::Setting::solid3d)
-    throw std::invalid_argument("lps_plastic is implemented in 3d only (got '" + std::string(pdmpm::name(sys.setting)) + "')");
+  if (sys.setting != core::Setting::solid3d && sys.setting != core::Setting::bar1d)
+    throw std::invalid_argument("lps_plastic is implemented for 3d and 1d only (got '" +
+                                std::string(pdmpm::name(sys.setting)) + "')");
   if (sys.particles.n_ghost() > 0)
     throw std::invalid_argument("lps_plastic does not support ghost particles (symmetry planes) yet");
   k_ = lps_coefficients(sys.setting, sys.material);
   hardening_ = sys.hardening;
-  three_g_ = k_.B / 5.0;  // 3D: B = 15G
+  // ζ in ‖t^d‖²_ω = ζ σ̄²/m_d: 5 in 3D (fourth moment 2/15), 1 in a bar; the return's
+  // stiffness is B/ζ = 3G (3D: B = 15G) or E (bar: B = E).
+  zeta_ = sys.setting == core::Setting::bar1d ? 1.0 : 5.0;
+  three_g_ = k_.B / zeta_;
   plastic_modulus_ = hardening_ ? hardening_->hardening_modulus(sys.material.E) : 0.0;
   const Index n = sys.particles.n_real;
   shell_ = isotropy_weights(sys);
@@ -106,7 +110,7 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     const double eps = e - gamma * theta * t.length[k] - plastic_ext_.committed[b];
     norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
-  const double trial = k_.B * std::sqrt(inv_md_[i] / 5.0 * norm2);  // σ̄ = (B/m_d) √(m_d/5 · Σ ωβcV ε²)
+  const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
   const double ep_n = eq_plastic_.committed[i];
   const double radius = hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n
                                    : std::numeric_limits<double>::infinity();

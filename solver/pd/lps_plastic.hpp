@@ -27,8 +27,9 @@
 // isotropic for every interior particle; ω becomes ωc in the norm and the flow rule.
 //
 // State: p per bond side and ε̄_p per particle, trial/committed (accept/reject).
-// 3D only so far: the 2D settings need the out-of-plane plastic strain (not a PD
-// degree of freedom) and are refused with a clear message. No ghost particles
+// 1D bar (uniaxial stress: A = 0, B = E, no volumetric split; ‖t‖²_ω = σ̄²/m, stiffness
+// E) and 3D; the 2D settings need the out-of-plane plastic strain (not a PD degree of
+// freedom) and are refused with a clear message. No ghost particles
 // (symmetry planes): the reverse bond of a ghost is not in any family.
 #include <optional>
 
@@ -60,7 +61,7 @@ class LpsPlastic final : public Model<D> {
  private:
   LpsCoefficients k_{};
   std::optional<core::J2Hardening> hardening_;  // none: never yields
-  double three_g_ = 0.0, plastic_modulus_ = 0.0;
+  double zeta_ = 5.0, three_g_ = 0.0, plastic_modulus_ = 0.0;
   std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
   std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
   std::vector<double> shell_;              // c per stencil offset (1 without the isotropy correction)
