@@ -71,9 +71,7 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
 
 template <int D>
 void Lps<D>::dilatation(const System<D>& sys, std::vector<double>& theta) const {
-  theta.assign(sys.particles.n_real, 0.0);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < sys.particles.n_real; ++i) theta[i] = dilatation_of(sys, i, m_[i]);
+  dilatations(sys, m_, theta);
 }
 
 template <int D>

@@ -215,9 +215,7 @@ void LpsPlastic<D>::reject() {
 
 template <int D>
 void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta) const {
-  theta.assign(sys.particles.n_real, 0.0);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < sys.particles.n_real; ++i) theta[i] = dilatation_of(sys, i, m_[i]);
+  dilatations(sys, m_, theta);
 }
 
 template <int D>

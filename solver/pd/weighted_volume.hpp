@@ -43,4 +43,13 @@ double dilatation_of(const System<D>& sys, Index i, double m_i) {
   return D * sum / m_i;
 }
 
+
+// θ of every real particle given its weighted volume m (indexed like the particles).
+template <int D>
+void dilatations(const System<D>& sys, const std::vector<double>& m, std::vector<double>& theta) {
+  theta.assign(sys.particles.n_real, 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < sys.particles.n_real; ++i) theta[i] = dilatation_of(sys, i, m[i]);
+}
+
 }  // namespace pdmpm::pd
