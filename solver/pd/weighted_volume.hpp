@@ -43,7 +43,6 @@ double dilatation_of(const System<D>& sys, Index i, double m_i) {
   return D * sum / m_i;
 }
 
-
 // θ of every real particle given its weighted volume m (indexed like the particles).
 template <int D>
 void dilatations(const System<D>& sys, const std::vector<double>& m, std::vector<double>& theta) {
