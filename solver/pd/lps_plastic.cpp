@@ -49,6 +49,8 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
       reverse_[b] = static_cast<BondIndex>(std::lower_bound(first, last, opposite[f.shape[b]]) - f.shape.begin());
     }
   plastic_ext_.assign(f.n_bonds(), 0.0);
+  trial_eps_.assign(f.n_bonds(), 0.0);
+  scale_.assign(n, 1.0);
   eq_plastic_.assign(n, 0.0);
   plastic_work_ = plastic_work_trial_ = 0.0;
 }
@@ -108,6 +110,7 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
     const double eps = e - gamma * theta * t.length[k] - plastic_ext_.committed[b];
+    trial_eps_[b] = eps;
     norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
   const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
@@ -119,16 +122,15 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     dep = (trial - radius) / (three_g_ + plastic_modulus_);
     r = 1.0 - three_g_ * dep / trial;
   }
+  scale_[i] = r;
   sigma_eq_[i] = r * trial;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
   // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs.
   for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) plastic_ext_.trial[b] = plastic_ext_.committed[b];
   if (r == 1.0) return;
-  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
-    const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
-    const double eps = e - gamma * theta * t.length[k] - plastic_ext_.committed[b];
-    plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * eps;
+  sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
+    plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
   });
 }
 
@@ -161,7 +163,7 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   for (Index k = 0; k < n_owners; ++k) return_map(sys, a.fam.particle(k));
 
   // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|.
-  const double B = k_.B, gamma = k_.gamma, kappa = k_.kappa;
+  const double B = k_.B, kappa = k_.kappa, three_k = 3.0 * k_.kappa;
   std::int64_t broken_after = 0;
 #pragma omp parallel for schedule(static) reduction(+ : broken_after)
   for (Index k = 0; k < n_owners; ++k) {
@@ -171,12 +173,12 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
     sys.for_each_live_bond(i, [&](BondIndex b, Index j, int s) {
       const auto g = deform<D>(t.xi[s], t.length[s], p.u[j] - p.u[i]);
       const double L = t.length[s];
-      const double tij = scalar_force_state(i, b, s, g.e, L), tji = scalar_force_state(j, reverse_[b], s, g.e, L);
+      // The elastic deviatoric part after the return is r ε_trial (both sides live together).
+      const double eps_i = scale_[i] * trial_eps_[b], eps_j = scale_[j] * trial_eps_[reverse_[b]];
+      const double tij = three_k * theta_[i] * L * inv_m_[i] + shell_[s] * B * eps_i * inv_md_[i];
+      const double tji = three_k * theta_[j] * L * inv_m_[j] + shell_[s] * B * eps_j * inv_md_[j];
       f += t.weight[s] * p.volume[j] * (tij + tji) / g.l * g.y;
-      if (req.energy) {
-        const double eps = g.e - gamma * theta_[i] * L - plastic_ext_.trial[b];
-        dev += t.weight[s] * shell_[s] * p.volume[j] * eps * eps;
-      }
+      if (req.energy) dev += t.weight[s] * shell_[s] * p.volume[j] * eps_i * eps_i;
     });
     p.f[i] = f;
     if (req.energy) (*req.energy)[i] = 0.5 * kappa * theta_[i] * theta_[i] + 0.5 * B * inv_md_[i] * dev;

@@ -71,6 +71,8 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> dissipation_;        // V_i σ̄ Δε̄_p of the last evaluation (J)
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;           // σ̄ per particle, last evaluation
+  std::vector<double> trial_eps_;          // ε = e^d − p_n per bond side, last evaluation
+  std::vector<double> scale_;              // r per particle: the elastic part is r ε after the return
 
   void return_map(const System<D>& sys, Index i);
   void set_weighted_volumes(const System<D>& sys, Index i);
