@@ -112,6 +112,13 @@ constexpr std::array<EnumName<WeightedVolume>, 2> names(WeightedVolume) {
   return {{{WeightedVolume::discrete, "discrete"}, {WeightedVolume::continuum, "continuum"}}};
 }
 
+// model.isotropy (plastic models): corrected (default: the deviatoric bond weight
+// c(n) = 1 + κ g(n) makes the lattice's fourth moment isotropic) or lattice (plain sums).
+enum class Isotropy { corrected, lattice };
+constexpr std::array<EnumName<Isotropy>, 2> names(Isotropy) {
+  return {{{Isotropy::corrected, "corrected"}, {Isotropy::lattice, "lattice"}}};
+}
+
 struct TimeSpec {
   Integrator integrator = Integrator::verlet;
   std::optional<double> end_time;
@@ -169,6 +176,7 @@ struct Scene {
   bool damage = false;
   bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
   bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
+  bool isotropic_deviatoric = false;       // model.isotropy = "corrected" (plastic PD models)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
 
@@ -185,8 +193,8 @@ struct Scene {
   OutputSpec output;
 };
 
-// Field names `output.fields` may list (PD models; MPM adds its own).
-const std::vector<std::string>& field_names();
+// Field names `output.fields` may list for this scene's method and model.
+std::vector<std::string> output_field_names(const Scene& s);
 const std::vector<std::string>& mpm_field_names();
 
 class TomlReader;
@@ -197,6 +205,8 @@ void read_pd_model(const TomlReader& model, Scene& s);
 // MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
 // (read from the material table's own reader) and the [mpm] table.
 void read_mpm_material(const TomlReader& material, Scene& s);
+// [material] yield_stress and tangent_modulus (0 ≤ E_t < E), for every plastic law.
+void read_hardening(const TomlReader& material, Scene& s);
 void read_mpm_options(const TomlReader& table, Scene& s);
 // Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,
 // displacement/analytic boundaries, non-box regions) for model type "mpm".

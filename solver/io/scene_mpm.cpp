@@ -10,8 +10,7 @@ void read_mpm_material(const TomlReader& m, Scene& s) {
   if (auto c = m.optional_enum<mpm::MaterialModel>("constitutive")) spec.constitutive = *c;
   const bool j2 = spec.constitutive == mpm::MaterialModel::j2;
   if (j2) {
-    s.hardening.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
-    s.hardening.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
+    read_hardening(m, s);
   } else {
     for (const char* key : {"yield_stress", "tangent_modulus"})
       if (m.has(key)) m.fail(key, "only for constitutive = \"j2\"");

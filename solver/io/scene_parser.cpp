@@ -151,6 +151,15 @@ void read_material(const TomlReader& m, Scene& s) {
     m.finish();
     return;
   }
+  if (pd::model_info(s.model).plastic) {
+    read_hardening(m, s);
+  } else {
+    for (const char* key : {"yield_stress", "tangent_modulus"})
+      if (m.has(key)) m.fail(key, "only for the plastic models (type = \"lps_plastic\", or \"mpm\" with constitutive = \"j2\")");
+  }
+  if (m.has("failure"))
+    m.fail("failure", "the ductile criterion is implemented for type = \"mpm\" (constitutive = \"j2\") only; the PD "
+                      "models fail bonds by critical_stretch or fracture_energy");
   s.critical_stretch = m.optional_number("critical_stretch");
   s.fracture_energy = m.optional_number("fracture_energy");
   if (s.critical_stretch && s.fracture_energy) m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
@@ -253,6 +262,9 @@ void read_geometry(const TomlReader& root, Scene& s) {
   if (s.shapes.front().subtract) root.fail("shape[0].operation", "the first shape must add material");
 
   for (const auto& t : root.tables("symmetry")) {
+    if (s.method == Method::pd && pd::model_info(s.model).plastic)
+      t.fail("", "symmetry planes are not supported by the " + s.model + " model yet (its plastic state lives on bond "
+                 "sides, and a ghost's reverse bond is in no family); model the whole body");
     SymmetrySpec sym{t.path(), axis_index(t, "axis", s.dimension), t.number("position")};
     t.finish();
     s.symmetries.push_back(sym);
@@ -348,7 +360,7 @@ void read_output(const TomlReader& o, Scene& s) {
   if (s.output.every && *s.output.every < 1) o.fail("every", "must be ≥ 1");
   s.output.history_every = o.optional_integer("history_every");
   if (s.output.history_every && *s.output.history_every < 1) o.fail("history_every", "must be ≥ 1");
-  const auto& allowed = s.method == Method::mpm ? mpm_field_names() : field_names();
+  const auto allowed = output_field_names(s);
   s.output.fields = allowed;
   if (o.has("fields")) {
     s.output.fields = o.strings("fields");
@@ -363,8 +375,15 @@ void read_output(const TomlReader& o, Scene& s) {
 
 }  // namespace
 
-const std::vector<std::string>& field_names() {
-  static const std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
+void read_hardening(const TomlReader& m, Scene& s) {
+  s.hardening.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
+  s.hardening.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
+}
+
+std::vector<std::string> output_field_names(const Scene& s) {
+  if (s.method == Method::mpm) return mpm_field_names();
+  std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
+  if (pd::model_info(s.model).plastic) names.insert(names.end(), {"triaxiality", "eq_plastic_strain"});
   return names;
 }
 
@@ -390,6 +409,12 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
 
   read_model(root.table("model"), s);
   read_discretization(root.table("discretization"), s);
+  if (s.method == Method::pd && !pd::model_info(s.model).supports(s.setting)) {
+    std::string others;
+    for (const auto& n : pd::model_names(s.setting)) others += (others.empty() ? "" : ", ") + n;
+    root.table("model").fail("type", "the " + s.model + " model is not derived for the " + std::string(name(s.setting)) +
+                                         " setting (docs/models/" + s.model + ".md); models for it: " + others + ", mpm");
+  }
   read_material(root.table("material"), s);
   if (s.method == Method::mpm) {
     if (auto t = root.optional_table("mpm")) read_mpm_options(*t, s);
@@ -405,7 +430,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_loads(root, s);
   read_crack(root, s);
   if (auto o = root.optional_table("output")) read_output(*o, s);
-  else s.output.fields = s.method == Method::mpm ? mpm_field_names() : field_names();
+  else s.output.fields = output_field_names(s);
   root.finish();
   if (s.method == Method::mpm) check_mpm_scene(s);
   return s;

@@ -21,6 +21,12 @@ void read_pd_model(const TomlReader& m, Scene& s) {
     }
     s.continuum_weighted_volume = *wv == WeightedVolume::continuum;
   }
+  if (auto iso = m.optional_enum<Isotropy>("isotropy")) {
+    if (!pd::model_info(s.model).plastic) m.fail("isotropy", "only for the plastic models (type = \"lps_plastic\")");
+    s.isotropic_deviatoric = *iso == Isotropy::corrected;
+  } else {
+    s.isotropic_deviatoric = pd::model_info(s.model).plastic;
+  }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);
     if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);

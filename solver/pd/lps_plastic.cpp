@@ -32,6 +32,7 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   inv_md_.resize(n);
   for (Index i = 0; i < n; ++i) set_weighted_volumes(sys, i);
   theta_.assign(n, 0.0);
+  theta_c_.assign(n, 0.0);
   sigma_eq_.assign(n, 0.0);
   dissipation_.assign(n, 0.0);
   // Families are in stencil order, so the reverse bond (offset −ξ) is found by bisection.
@@ -105,11 +106,19 @@ template <int D>
 void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   const auto& p = sys.particles;
   const auto& t = sys.table;
-  const double gamma = k_.gamma, theta = theta_[i];
-  double norm2 = 0.0;  // Σ ω β c V ε²
+  // θ_c = (d/m_d) Σ ωβcV|ξ|e: the dilatation measured with the deviatoric weights, so that
+  // Σ ωβcV|ξ| ε = 0 and the force is the gradient of W (with c ≡ 1 it is LPS's θ).
+  double moment = 0.0;
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
-    const double eps = e - gamma * theta * t.length[k] - plastic_ext_.committed[b];
+    trial_eps_[b] = e;
+    moment += t.weight[k] * shell_[k] * p.volume[j] * t.length[k] * e;
+  });
+  const double gamma_theta = k_.gamma * k_.d * moment * inv_md_[i];
+  theta_c_[i] = k_.d * moment * inv_md_[i];
+  double norm2 = 0.0;  // Σ ω β c V ε²
+  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
+    const double eps = trial_eps_[b] - gamma_theta * t.length[k] - plastic_ext_.committed[b];
     trial_eps_[b] = eps;
     norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
@@ -222,23 +231,23 @@ void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta)
 
 template <int D>
 double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
-  // The elastic bound (plastic flow only softens the bonds): the direct term B c ω β (1/m_d,i + 1/m_d,j)
-  // plus the dilatation coupling d (3K + B c/3) ω β (1/m_i + 1/m_j).
+  // The elastic bound (plastic flow only softens the bonds): the direct term B c ω β (1/m_d,i + 1/m_d,j),
+  // the coupling through θ_c, d γ B c ω β (1/m_d,i + 1/m_d,j), and through θ, d 3K ω β (1/m_i + 1/m_j).
   const double threeK = 3.0 * k_.kappa;
   double sum = 0.0;
   sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
     const double c = shell_[k];
-    sum += (k_.B * c * (inv_md_[i] + inv_md_[j]) + k_.d * (threeK + k_.B * c / 3.0) * (inv_m_[i] + inv_m_[j])) *
+    sum += (k_.B * c * (1.0 + k_.d * k_.gamma) * (inv_md_[i] + inv_md_[j]) + k_.d * threeK * (inv_m_[i] + inv_m_[j])) *
            sys.table.weight[k] * sys.particles.volume[j];
   });
   return sum;
 }
 
-// t_ij / (ωβ): 3K θ_i |ξ| / m_i + c B (e − θ_i|ξ|/3 − p_ij) / m_d,i, with p from the trial state.
+// t_ij / (ωβ): 3K θ_i |ξ| / m_i + c B (e − θ_c,i|ξ|/3 − p_ij) / m_d,i, with p from the trial state.
 template <int D>
 double LpsPlastic<D>::scalar_force_state(Index i, BondIndex b, int k, double e, double L) const {
   return 3.0 * k_.kappa * theta_[i] * L * inv_m_[i] +
-         shell_[k] * k_.B * (e - k_.gamma * theta_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
+         shell_[k] * k_.B * (e - k_.gamma * theta_c_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
 }
 
 template <int D>

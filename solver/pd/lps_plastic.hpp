@@ -7,6 +7,7 @@
 //
 //   t_ij   = ω (3K θ_i |ξ|)/m_i + t^d_ij                    (LPS with a plastic extension p)
 //   t^d_ij = (B/m_i) ω ε_ij,  ε = e^d − p,  e^d = e − θ|ξ|/3  (deviatoric force state, B = 15G)
+//   (with the isotropy correction below, θ in e^d is θ_c, measured with the deviatoric weights)
 //   ‖t‖²_ω = Σ_j (t_ij²/ω) β V_j                             (ω-weighted norm)
 // (with p = 0 this is LPS: 3Kθ|ξ|/m + B(e − θ|ξ|/3)/m = ((3K − 5G)θ|ξ| + 15G e)/m).
 //
@@ -24,7 +25,9 @@
 // response depends on direction (E_[100] = 0.886 E at δ = 3.015Δx, ω = 1). Weighting the
 // deviatoric term of each bond by c(n) = 1 + κ g(n), g = n_x⁴ + n_y⁴ + n_z⁴ − 3/5, with κ
 // from the full stencil's moments, and replacing m by m_d = Σ ωβc r² V there, makes it
-// isotropic for every interior particle; ω becomes ωc in the norm and the flow rule.
+// isotropic for every interior particle; ω becomes ωc in the norm and the flow rule, and the
+// deviatoric split uses θ_c = (d/m_d) Σ ωβc|ξ|eV so that Σ ωβcV|ξ|ε = 0 and the force stays
+// the gradient of W = ½κθ² + (B/2m_d) Σ ωβcV ε² (without it Verlet is unstable).
 //
 // State: p per bond side and ε̄_p per particle, trial/committed (accept/reject).
 // 1D bar (uniaxial stress: A = 0, B = E, no volumetric split; ‖t‖²_ω = σ̄²/m, stiffness
@@ -51,6 +54,7 @@ class LpsPlastic final : public Model<D> {
   void reject() override;
   const std::vector<double>* eq_plastic_strain() const override { return &eq_plastic_.trial; }
   double plastic_work() const override { return plastic_work_trial_; }
+  std::optional<Mat<D>> own_stress(const System<D>& sys, Index i) const override { return force_state_stress(sys, i); }
 
   // Stress of particle i from its own force state, Σ_j t_ij (ξ ⊗ y/|y|) β V_j
   // (= λθI + 2Gε for an elastic homogeneous state), from the last evaluation.
@@ -63,6 +67,7 @@ class LpsPlastic final : public Model<D> {
   std::optional<core::J2Hardening> hardening_;  // none: never yields
   double zeta_ = 5.0, three_g_ = 0.0, plastic_modulus_ = 0.0;
   std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
+  std::vector<double> theta_c_;            // θ_c = (d/m_d) Σ ωβcV|ξ|e, the deviatoric split's dilatation
   std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
   std::vector<double> shell_;              // c per stencil offset (1 without the isotropy correction)
   std::vector<BondIndex> reverse_;         // bond j→i of each bond i→j

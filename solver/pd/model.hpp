@@ -49,6 +49,10 @@ class Model {
   // so far (J); nullptr and 0 for elastic ones.
   virtual const std::vector<double>* eq_plastic_strain() const { return nullptr; }
   virtual double plastic_work() const { return 0.0; }
+  // The model's own stress of particle i from its force state, for models whose stress
+  // is not Hooke's law of the strain (plastic ones); nullopt: the fields use the
+  // deformation-gradient stress of pd/stress.hpp.
+  virtual std::optional<Mat<D>> own_stress(const System<D>& sys, Index i) const { (void)sys, (void)i; return std::nullopt; }
 };
 
 // One row of the model table: what a scene, a run and a test need to know of a
@@ -61,6 +65,8 @@ struct ModelInfo {
   // A pair potential fixes Poisson's ratio by the setting (Cauchy relation).
   bool pair_potential = false;
   bool plastic = false;
+  // The settings the model is derived for; empty: every setting.
+  std::vector<core::Setting> settings;
   std::function<std::unique_ptr<Model<1>>()> make1;
   std::function<std::unique_ptr<Model<2>>()> make2;
   std::function<std::unique_ptr<Model<3>>()> make3;
@@ -70,6 +76,7 @@ struct ModelInfo {
   std::optional<double> fixed_poisson(core::Setting s) const;
   // Admissible Poisson's ratio interval [lo, hi] in a setting.
   std::pair<double, double> poisson_range(core::Setting s) const;
+  bool supports(core::Setting s) const;
   template <int D>
   std::unique_ptr<Model<D>> make() const;
 };
@@ -81,6 +88,8 @@ const ModelInfo* find_model(std::string_view name);
 // The row of a model the caller knows exists (throws std::invalid_argument otherwise).
 const ModelInfo& model_info(std::string_view name);
 std::vector<std::string> model_names();
+// The models a scene in this setting may select.
+std::vector<std::string> model_names(core::Setting s);
 // A new model by name (nullptr if unknown).
 template <int D>
 std::unique_ptr<Model<D>> make_model(const std::string& name);

@@ -64,6 +64,11 @@ double von_mises(const Tensor6& s) {
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]));
 }
 
+double triaxiality(const Tensor6& s) {
+  const double eq = von_mises(s);
+  return eq > 0.0 ? (s[0] + s[1] + s[2]) / 3.0 / eq : 0.0;
+}
+
 template std::vector<Tensor6> particle_stress<1>(const System<1>&);
 template std::vector<Tensor6> particle_stress<2>(const System<2>&);
 template std::vector<Tensor6> particle_stress<3>(const System<3>&);

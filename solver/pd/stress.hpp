@@ -16,5 +16,7 @@ template <int D>
 std::vector<Tensor6> particle_stress(const System<D>& sys);
 
 double von_mises(const Tensor6& s);
+// Stress triaxiality η = σ_m / σ_eq (0 where σ_eq = 0).
+double triaxiality(const Tensor6& s);
 
 }  // namespace pdmpm::pd

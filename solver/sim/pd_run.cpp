@@ -40,6 +40,12 @@ class PdRun {
   void verlet();
   void adr();
   nlohmann::json summary() const;
+  bool plastic() const { return s_.model->eq_plastic_strain() != nullptr; }
+  // K + U + W_p − E₀ − W_ext: zero for an exact integrator (W_p = 0 for elastic models).
+  double energy_error() const {
+    return kinetic_energy_ + internal_energy_ + s_.model->plastic_work() - initial_energy_ - external_work_;
+  }
+  std::vector<pd::Tensor6> stresses() const;
 
   const io::Scene& scene_;
   PdSetup<D>& s_;
@@ -107,6 +113,7 @@ void PdRun<D>::start_outputs() {
   if constexpr (D == 3)
     for (int a = 0; a < 3; ++a) cols.push_back(std::string("angular_momentum_") + axis_name(a));
   cols.insert(cols.end(), {"broken_bonds", "max_damage"});
+  if (plastic()) cols.insert(cols.end(), {"plastic_work", "max_eq_plastic_strain"});
   if (s_.contact) cols.push_back("contact_pairs");
   if (s_.indenter)
     for (int a = 0; a < D; ++a) cols.push_back(std::string("indenter_force_") + axis_name(a));
@@ -142,7 +149,7 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
 
 template <int D>
 void PdRun<D>::history_row(std::int64_t step, double t) {
-  std::vector<double> row{static_cast<double>(step), t, kinetic_energy_, internal_energy_, external_work_, kinetic_energy_ + internal_energy_ - initial_energy_ - external_work_};
+  std::vector<double> row{static_cast<double>(step), t, kinetic_energy_, internal_energy_, external_work_, energy_error()};
   const Vec<D> mom = simulation_.momentum();
   const Eigen::Vector3d ang = simulation_.angular_momentum();
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
@@ -152,6 +159,11 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
   row.push_back(static_cast<double>(simulation_.broken_bonds()));
   const auto phi = pd::local_damage(s_.system);
   row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
+  if (plastic()) {
+    const auto& ep = *s_.model->eq_plastic_strain();
+    row.push_back(s_.model->plastic_work());
+    row.push_back(ep.empty() ? 0.0 : *std::max_element(ep.begin(), ep.end()));
+  }
   if (s_.contact) row.push_back(static_cast<double>(simulation_.contact_pairs()));
   if (s_.indenter)
     for (int a = 0; a < D; ++a) row.push_back(simulation_.indenter_force()[a]);
@@ -206,8 +218,8 @@ void PdRun<D>::frame(std::int64_t step, double t) {
     }
     fields.push_back({"dilatation", io::FieldKind::scalar, theta});
   }
-  if (wants("stress") || wants("von_mises")) {
-    const auto sigma = pd::particle_stress(s_.system);
+  if (wants("stress") || wants("von_mises") || wants("triaxiality")) {
+    const auto sigma = stresses();
     if (wants("stress")) {
       std::vector<double> flat(static_cast<std::size_t>(n) * 6);
       for (Index i = 0; i < n; ++i)
@@ -219,8 +231,31 @@ void PdRun<D>::frame(std::int64_t step, double t) {
       for (Index i = 0; i < n; ++i) vm[i] = pd::von_mises(sigma[i]);
       fields.push_back({"von_mises", io::FieldKind::scalar, vm});
     }
+    if (wants("triaxiality")) {
+      std::vector<double> eta(n);
+      for (Index i = 0; i < n; ++i) eta[i] = pd::triaxiality(sigma[i]);
+      fields.push_back({"triaxiality", io::FieldKind::scalar, eta});
+    }
   }
+  if (wants("eq_plastic_strain")) fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, *s_.model->eq_plastic_strain()});
   writer->write_frame(step, t, vec3(pos), fields);
+}
+
+// The model's own stress where it has one (plastic models), else the
+// deformation-gradient stress (Hooke's law of the non-local strain).
+template <int D>
+std::vector<pd::Tensor6> PdRun<D>::stresses() const {
+  if (!s_.model->own_stress(s_.system, 0)) return pd::particle_stress(s_.system);
+  std::vector<pd::Tensor6> out(p_.n_real);
+  constexpr int row[6] = {0, 1, 2, 0, 1, 0}, col[6] = {0, 1, 2, 1, 2, 2};  // xx yy zz xy yz xz
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < p_.n_real; ++i) {
+    const Mat<D> s = *s_.model->own_stress(s_.system, i);
+    out[i] = {};
+    for (int c = 0; c < 6; ++c)
+      if (row[c] < D && col[c] < D) out[i][c] = 0.5 * (s(row[c], col[c]) + s(col[c], row[c]));
+  }
+  return out;
 }
 
 template <int D>
@@ -325,8 +360,13 @@ nlohmann::json PdRun<D>::summary() const {
         {"kinetic_energy", kinetic_energy_},
         {"internal_energy", internal_energy_},
         {"external_work", external_work_},
-        {"energy_error", kinetic_energy_ + internal_energy_ - initial_energy_ - external_work_},
+        {"energy_error", energy_error()},
         {"critical_stretch", s_.critical_stretch}}}};
+  if (plastic()) {
+    const auto& ep = *s_.model->eq_plastic_strain();
+    j["metrics"]["plastic_work"] = s_.model->plastic_work();
+    j["metrics"]["max_eq_plastic_strain"] = ep.empty() ? 0.0 : *std::max_element(ep.begin(), ep.end());
+  }
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;

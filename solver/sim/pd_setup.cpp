@@ -1,6 +1,7 @@
 #include "solver/sim/pd_setup.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include "solver/bc/symmetry.hpp"
 #include "solver/core/error.hpp"
@@ -53,6 +54,8 @@ PdSetup<D> build_pd(const io::Scene& s) {
   sys.influence = s.influence;
   sys.partial_volume = s.partial_volume;
   sys.continuum_weighted_volume = s.continuum_weighted_volume;
+  if (pd::model_info(s.model).plastic) sys.hardening = s.hardening;
+  sys.isotropic_deviatoric = s.isotropic_deviatoric;
 
   std::vector<bc::SymmetryPlane> planes;
   for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
@@ -69,7 +72,11 @@ PdSetup<D> build_pd(const io::Scene& s) {
   }
 
   out.model = pd::make_model<D>(s.model);
-  out.model->initialise(sys);
+  try {
+    out.model->initialise(sys);
+  } catch (const std::invalid_argument& e) {  // a stencil the model cannot take (lps_plastic's isotropy weights)
+    throw InputError(s.file, "model.isotropy", std::string(e.what()) + "; use isotropy = \"lattice\" or another horizon ratio");
+  }
   out.damage = s.damage;
   out.break_after_force = s.break_after_force;
   if (s.damage)

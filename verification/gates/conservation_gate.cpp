@@ -31,6 +31,7 @@
 #include "solver/time/velocity_verlet.hpp"
 #include "solver/time/stable_step.hpp"
 #include "verification/support/gate.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm {
 namespace {
@@ -41,7 +42,8 @@ constexpr double unit_roundoff = std::numeric_limits<double>::epsilon() / 2;
 std::string dim_name(int D) { return D == 2 ? "2d" : "3d"; }
 
 // A free body: plane-stress plate nx × ny (2D) or block nx × ny × nz (3D), Δx = 1 mm.
-std::string body_scene(const std::string& model, int D, const std::string& shape, double critical_stretch) {
+std::string body_scene(const std::string& model, int D, const std::string& shape, double critical_stretch,
+                       const std::string& material_keys) {
   std::string s = "[scene]\nid = \"conservation\"\n[discretization]\ndimension = " + std::to_string(D) +
                   "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
@@ -49,6 +51,7 @@ std::string body_scene(const std::string& model, int D, const std::string& shape
   s += "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n";
   if (!pd::model_info(model).pair_potential) s += "poissons_ratio = 0.3\n";
   if (critical_stretch > 0) s += "critical_stretch = " + std::to_string(critical_stretch) + "\n";
+  s += material_keys;
   s += "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";
   return s;
 }
@@ -137,7 +140,7 @@ MomentumRun momentum_run(const std::string& model, bool spin, int steps, std::ve
                          std::vector<double>* series_drift) {
   const std::string shape = spin ? ball(D, D == 2 ? 8e-3 : 4.5e-3) : box(D, D == 2 ? 40 : 16, D == 2 ? 20 : 8, 8);
   // Fracture: s₀ = 1e-3; the tearing velocity jump 2V = 40 m/s gives a stress of ~ρcV ≈ 0.8 GPa, strain ≈ 4e-3.
-  auto setup = sim::build_pd<D>(io::parse_scene_text(body_scene(model, D, shape, spin ? 0.0 : 1e-3), "conservation"));
+  auto setup = sim::build_pd<D>(io::parse_scene_text(body_scene(model, D, shape, spin ? 0.0 : 1e-3, test::flowing_keys(model)), "conservation"));
   auto& p = setup.system.particles;
   const double V = 20.0, spin_rate = 2e4;  // m/s; rad/s (rim speed 160 m/s in 2D, 90 m/s in 3D)
   Vec<D> drift = Vec<D>::Zero();
@@ -218,7 +221,7 @@ void momentum_gates(bool spin) {
                {"xscale", "linear"},
                {"yscale", "log"},
                {"series", json::array()}};
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(D == 2 ? core::Setting::plane_stress : core::Setting::solid3d)) {
     std::vector<double> t, d;
     const int steps = D == 2 ? 1500 : 600;
     const auto r = momentum_run<D>(model, spin, steps, &t, &d);
@@ -286,9 +289,10 @@ double slope(const std::vector<double>& t, const std::vector<double>& y) {
 template <int D>
 void energy_gates() {
   json rows = json::array();
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(D == 2 ? core::Setting::plane_stress : core::Setting::solid3d)) {
     auto setup = sim::build_pd<D>(io::parse_scene_text(
-        body_scene(model, D, D == 2 ? box(2, 30, 15, 0) : box(3, 9, 8, 7), 0.0), "energy"));
+        body_scene(model, D, D == 2 ? box(2, 30, 15, 0) : box(3, 9, 8, 7), 0.0, test::elastic_range_keys(model)),
+        "energy"));
     auto& p = setup.system.particles;
     const double a = 5e-3;  // m/s: strains ~ a/c ≈ 1e-6, so the body stays linear to ~1e-6
     for (Index i = 0; i < p.n_real; ++i) {

@@ -36,6 +36,7 @@
 #include "verification/support/command_line.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/patch_check.hpp"
+#include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
 
 namespace pdmpm {
@@ -51,6 +52,10 @@ std::string g17(double v) {
 }
 
 std::string dim_name(int D) { return std::to_string(D) + "d"; }
+// The setting of the loaded and free bodies below: a bar, a plane-stress plate, a block.
+core::Setting setting_of(int D) {
+  return D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_stress : core::Setting::solid3d;
+}
 
 // A plate/bar/block with Δx = 1 mm, the left end fixed and the right end pulled
 // by a traction ramp (so a run has energy even when it starts at rest).
@@ -69,6 +74,7 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
   s += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
   s += "[material]\ndensity = 7850\nyoungs_modulus = " + g17(E) + "\n";
   if (!pd::model_info(model).pair_potential) s += "poissons_ratio = 0.3\n";
+  s += test::elastic_range_keys(model);  // the claims are about the linear operator
   s += "[model]\ntype = \"" + model + "\"\n[time]\n" + time;
   std::string value = "[\"" + g17(sigma) + " * min(t / " + g17(ramp) + ", 1)\"";
   for (int a = 1; a < D; ++a) value += ", 0";
@@ -86,14 +92,15 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
 template <int D>
 void bounded_at_09() {
   json rows = json::array();
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(setting_of(D))) {
     std::string shape = D == 2 ? "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [0.016, 0.012]\n"
                                : "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [0.007, 0.006, 0.006]\n";
     std::string text = "[scene]\nid = \"bounded\"\n[discretization]\ndimension = " + std::to_string(D) +
                        "\nspacing = 1e-3\nhorizon_ratio = 3.015\n" +
                        (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
                        "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n" +
-                       (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") + "[model]\ntype = \"" + model +
+                       (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") +
+                       test::elastic_range_keys(model) + "[model]\ntype = \"" + model +
                        "\"\n[time]\nsteps = 1\n";
     auto setup = sim::build_pd<D>(io::parse_scene_text(text, "bounded"));
     auto& p = setup.system.particles;
@@ -163,7 +170,7 @@ TEST(FastStability, BoundedAt09Lanczos3d) { bounded_at_09<3>(); }
 
 template <int D>
 void unstable_at_15(json& rows) {
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(setting_of(D))) {
     const std::string base = loaded_scene(model, D, 200e9, 1e7, 2e-6, "steps = 1\n");
     // In-process estimates of the same scene (deterministic: the force loops gather, the
     // Lanczos dot products are serial).
@@ -573,7 +580,7 @@ TEST(FastStability, DegenerateBodies) {
 
   // Empty family: one particle of a block loses all its bonds (both sides).
   bool empty_ok = true;
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(core::Setting::plane_strain)) {
     test::PatchConfig cfg;
     cfg.model = model;
     cfg.setting = core::Setting::plane_strain;
@@ -644,7 +651,7 @@ std::vector<Vec<D>> scaled_run(const std::string& model, double E, int steps, do
 
 TEST(FastStability, StiffAndSoftMaterialsScale) {
   json rows = json::array();
-  for (const auto& model : pd::model_names()) {
+  for (const auto& model : pd::model_names(setting_of(2))) {
     auto ref_setup =
         sim::build_pd<2>(io::parse_scene_text(loaded_scene(model, 2, 200e9, 2e7, 2e-6, "steps = 1\n"), "ref"));
     const double dt_ref = 0.8 * time::silling_askari_step<2>(ref_setup.system, *ref_setup.model);

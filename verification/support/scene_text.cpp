@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "solver/pd/model.hpp"
+
 namespace pdmpm::test {
 
 namespace {
@@ -30,6 +32,14 @@ std::string SceneText::toml() const {
   s += fmt::format("[model]\ntype = \"{}\"\n", model) + lines(model_keys);
   s += "[time]\n" + lines(time);
   return s + lines(tables);
+}
+
+std::string elastic_range_keys(const std::string& model) {
+  return pd::model_info(model).plastic ? "yield_stress = 1e30\ntangent_modulus = 0\n" : "";
+}
+
+std::string flowing_keys(const std::string& model) {
+  return pd::model_info(model).plastic ? "yield_stress = 1e6\ntangent_modulus = 2e9\n" : "";
 }
 
 io::Scene SceneText::parse(const std::string& file) const { return io::parse_scene_text(toml(), file); }

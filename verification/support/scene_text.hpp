@@ -29,4 +29,13 @@ struct SceneText {
   io::Scene parse(const std::string& file = "test.toml") const;
 };
 
+// The [material] lines a model needs beyond the elastic constants, so that a loop
+// over the model table can give every model the same scene: nothing for an elastic
+// model; for a plastic one a yield stress no test in that loop reaches (1e30 Pa),
+// so it answers as its elastic part.
+std::string elastic_range_keys(const std::string& model);
+// For a plastic model a yield stress of 1 MPa (any test strain above 5e-6 flows at
+// E = 200 GPa) with E_t = E/100; nothing for an elastic model.
+std::string flowing_keys(const std::string& model);
+
 }  // namespace pdmpm::test

@@ -57,6 +57,19 @@ def mpm(old, new):
     return MPM_BASE.replace(old, new, 1)
 
 
+# The same material as an elastoplastic PD block (3D: the plastic model is derived for 1D and 3D).
+PLASTIC_BASE = (replace('type = "lps"\ninfluence = "constant"', 'type = "lps_plastic"')
+                .replace('dimension = 2\nplane = "strain"', "dimension = 3").replace("thickness = 1e-3\n", "")
+                .replace('type = "rectangle"\nmin = [0.0, 0.0]\nmax = [0.02, 0.01]', 'type = "box"\nmin = [0.0, 0.0, 0.0]\nmax = [0.012, 0.008, 0.008]')
+                .replace("min = [0.0, 0.0], max = [0.001, 0.01]", "min = [0.0, 0.0, 0.0], max = [0.001, 0.008, 0.008]")
+                .replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8\ntangent_modulus = 1e9"))
+
+
+def plastic(old, new):
+    assert old in PLASTIC_BASE, old
+    return PLASTIC_BASE.replace(old, new, 1)
+
+
 CASES = {
     "unknown_top_key": ("foo | unknown key", BASE + "\n[foo]\nbar = 1\n"),
     "unknown_material_key": ("material.youngs_modulu | unknown key", replace("density = 2500", "density = 2500\nyoungs_modulu = 1")),
@@ -130,6 +143,17 @@ CASES = {
     "mpm_cfl_above_one": ("time.safety_factor | CFL number", mpm("end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 1.5")),
     "mpm_influence": ("model.influence | only for the peridynamic models", mpm('type = "mpm"', 'type = "mpm"\ninfluence = "constant"')),
     "mpm_table_for_pd": ("mpm | only for model type", BASE + '\n[mpm]\nshape_function = "gimp"\n'),
+    "plastic_zero_yield": ("material.yield_stress | must be > 0", plastic("yield_stress = 2e8", "yield_stress = 0")),
+    "plastic_missing_yield": ("material.yield_stress | missing", plastic("yield_stress = 2e8\n", "")),
+    "plastic_tangent_above_e": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = 6e10")),
+    "plastic_tangent_equal_e": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = 50e9")),
+    "plastic_tangent_negative": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = -1e9")),
+    "plastic_in_plane_strain": ("model.type | not derived for the plane_strain setting", BASE.replace('type = "lps"\ninfluence = "constant"', 'type = "lps_plastic"').replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8\ntangent_modulus = 1e9")),
+    "plastic_symmetry": ("symmetry[0] | symmetry planes are not supported", PLASTIC_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
+    "plastic_ductile_failure": ("material.failure | implemented for type = \"mpm\"", PLASTIC_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
+    "yield_for_elastic_pd": ("material.yield_stress | only for the plastic models", replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8")),
+    "isotropy_for_elastic_pd": ("model.isotropy | only for the plastic models", replace('influence = "constant"', 'influence = "constant"\nisotropy = "lattice"')),
+    "plastic_unknown_isotropy": ("model.isotropy | must be one of corrected, lattice", plastic('type = "lps_plastic"', 'type = "lps_plastic"\nisotropy = "cubic"')),
 }
 
 

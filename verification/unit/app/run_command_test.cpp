@@ -68,6 +68,8 @@ TEST(Cli, UsageErrorsExitWithTwo) {
 TEST(Cli, SmallScenesOfEachModelRun) {
   for (const auto& model : pdmpm::pd::model_names())
     for (int dim : {2, 3}) {
+      if (!pdmpm::pd::model_info(model).supports(dim == 2 ? pdmpm::core::Setting::plane_strain : pdmpm::core::Setting::solid3d))
+        continue;
       const std::string box = dim == 2 ? "0.012, 0.008" : "0.008, 0.006, 0.006";
       const pdmpm::test::SceneText text{
           .id = "tiny_" + model + std::to_string(dim),
@@ -76,6 +78,7 @@ TEST(Cli, SmallScenesOfEachModelRun) {
           .min = std::vector<double>(dim, 0.0),
           .max = dim == 2 ? std::vector<double>{0.012, 0.008} : std::vector<double>{0.008, 0.006, 0.006},
           .poissons_ratio = "0.25",
+          .material_keys = pdmpm::test::flowing_keys(model),
           .model = model,
           .time = "steps = 20",
           .tables = "[[boundary]]\nkind = \"velocity\"\nvalue = [" +

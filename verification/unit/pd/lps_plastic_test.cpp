@@ -12,6 +12,7 @@
 
 #include "solver/pd/lps.hpp"
 #include "verification/support/pd_fixtures.hpp"
+#include "verification/support/plastic_paths.hpp"
 
 namespace pdmpm::pd {
 namespace {
@@ -20,34 +21,16 @@ const core::Elastic kSteel{215e9, 0.33, 7800.0};
 const double kYield = 2.15e6;                                      // σ_y = 1e-5 E
 const core::J2Hardening kHardening{kYield, 20e9};  // E_t ≈ E/11: hardening visible on the scale of σ_y
 
-// 15³ sites: the centre is ≥ 2δ from every face, so its state is exactly homogeneous.
-System<3> block(bool isotropic = false) {
-  test::BlockSpec spec;
-  spec.sites = 15;
-  spec.material = kSteel;
-  auto sys = test::make_block<3>(spec);
-  sys.hardening = kHardening;
-  sys.isotropic_deviatoric = isotropic;
-  return sys;
-}
-
-Index centre(const System<3>& sys) {
-  Index best = 0;
-  const Vec<3> c = Vec<3>::Constant(7e-3);
-  for (Index i = 0; i < sys.n_real(); ++i)
-    if ((sys.particles.x0[i] - c).norm() < (sys.particles.x0[best] - c).norm()) best = i;
-  return best;
-}
-
-void apply_affine(System<3>& sys, const Mat<3>& H) {
-  for (Index i = 0; i < sys.n_real(); ++i) sys.particles.u[i] = H * sys.particles.x0[i];
+test::PlasticBlock block(bool isotropic = false) {
+  return test::PlasticBlock({.material = kSteel, .hardening = kHardening, .isotropic = isotropic});
 }
 
 TEST(LpsPlastic, BelowYieldItIsElasticLps) {
-  auto plastic_sys = block(), elastic_sys = block();
-  LpsPlastic<3> plastic;
+  auto b = block();
+  auto& plastic_sys = b.sys;
+  auto& plastic = b.model;
+  auto elastic_sys = b.sys;
   Lps<3> elastic;
-  plastic.initialise(plastic_sys);
   elastic.initialise(elastic_sys);
   for (Index i = 0; i < plastic_sys.n_real(); ++i) {
     const Vec<3> x = plastic_sys.particles.x0[i];
@@ -64,28 +47,7 @@ TEST(LpsPlastic, BelowYieldItIsElasticLps) {
   EXPECT_GT(fmax, 0.0);
   // 1e-12: the same sums in another order (the elastic kernel sums in 8 SIMD lanes).
   EXPECT_LT(diff, 1e-12 * fmax);
-  EXPECT_EQ((*plastic.eq_plastic_strain())[centre(plastic_sys)], 0.0);
-}
-
-// Finds the lateral strain that makes σ_yy = 0 at the centre (secant), evaluates
-// the trial state there and returns σ, all in the frame of the loading axis: the
-// strain is R diag(ε, l, l) Rᵀ in lattice axes.
-Mat<3> uniaxial_stress(System<3>& sys, LpsPlastic<3>& model, Index c, double eps, double& lateral,
-                       const Mat<3>& R = Mat<3>::Identity()) {
-  auto sigma_at = [&](double l) {
-    apply_affine(sys, R * Vec<3>(eps, l, l).asDiagonal() * R.transpose());
-    model.compute_forces(sys, {});
-    return Mat<3>(R.transpose() * model.force_state_stress(sys, c) * R);
-  };
-  double l0 = lateral, l1 = lateral - 0.33 * 1e-7;
-  double f0 = sigma_at(l0)(1, 1), f1 = sigma_at(l1)(1, 1);
-  for (int it = 0; it < 50 && std::abs(f1) > 1e-9 * kYield && f1 != f0; ++it) {
-    const double l2 = l1 - f1 * (l1 - l0) / (f1 - f0);
-    l0 = l1, f0 = f1, l1 = l2;
-    f1 = sigma_at(l1)(1, 1);
-  }
-  lateral = l1;
-  return sigma_at(l1);
+  EXPECT_EQ(b.eq_plastic_strain(), 0.0);
 }
 
 // Uniaxial stress along a lattice axis. What is exact on the lattice: the return
@@ -97,10 +59,10 @@ Mat<3> uniaxial_stress(System<3>& sys, LpsPlastic<3>& model, Index c, double eps
 // (measured: E_[100] = 0.886 E, ν_[100] = 0.349). With the isotropy correction the same
 // path meets the analytic J2 curve (next test).
 TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
-  auto sys = block();
-  LpsPlastic<3> model;
-  model.initialise(sys);
-  const Index c = centre(sys);
+  auto b = block();
+  auto& sys = b.sys;
+  auto& model = b.model;
+  const Index c = b.centre;
   const double E = kSteel.E, K = kSteel.bulk(), ey = kYield / E;
   const double H = kHardening.hardening_modulus(E);
   double lateral = 0.0, worst_surface = 0.0, worst_volume = 0.0, first_slope = 0.0;
@@ -108,7 +70,7 @@ TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
   const int n = 40;
   for (int k = 1; k <= n; ++k) {
     const double eps = 10.0 * ey * k / n;  // to ε = 10 σ_y/E
-    const Mat<3> s = uniaxial_stress(sys, model, c, eps, lateral);
+    const Mat<3> s = b.uniaxial(eps, lateral);
     model.accept();
     if (k == 1) first_slope = s(0, 0) / eps;
     const double ep = (*model.eq_plastic_strain())[c], seq = model.equivalent_stress(c);
@@ -130,15 +92,15 @@ TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
 
   // Unloading is elastic with the initial slope; reloading below the peak does not yield.
   const double peak = 10.0 * ey;
-  const Mat<3> s_peak = uniaxial_stress(sys, model, c, peak, lateral);
+  const Mat<3> s_peak = b.uniaxial(peak, lateral);
   model.accept();
   const double ep_peak = (*model.eq_plastic_strain())[c];
-  const Mat<3> s_back = uniaxial_stress(sys, model, c, peak - 2.0 * ey, lateral);
+  const Mat<3> s_back = b.uniaxial(peak - 2.0 * ey, lateral);
   model.accept();
   EXPECT_EQ((*model.eq_plastic_strain())[c], ep_peak) << "unloading must not flow";
   // 1e-3: the elastic slope changes at O(ε) = 1e-4 with the bond kinematics' nonlinearity (measured 9.6e-5).
   EXPECT_NEAR((s_peak(0, 0) - s_back(0, 0)) / (2.0 * ey) / first_slope, 1.0, 1e-3) << "unloading slope";
-  uniaxial_stress(sys, model, c, peak - 0.5 * ey, lateral);
+  b.uniaxial(peak - 0.5 * ey, lateral);
   model.accept();
   EXPECT_EQ((*model.eq_plastic_strain())[c], ep_peak) << "reload below the peak must not yield";
   // The measured lattice anisotropy (documented; not a claim about J2): E_[100] / E.
@@ -153,14 +115,13 @@ TEST(LpsPlastic, CorrectedLatticeFollowsTheBilinearJ2CurveInAnyDirection) {
   auto bilinear = [&](double e) { return e <= ey ? E * e : kYield + Et * (e - ey); };
   const Mat<3> skew = Eigen::AngleAxisd(0.7, Vec<3>(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
   for (const Mat<3>& R : {Mat<3>(Mat<3>::Identity()), skew}) {
-    auto sys = block(true);
-    LpsPlastic<3> model;
-    model.initialise(sys);
-    const Index c = centre(sys);
+    auto b = block(true);
+    auto& model = b.model;
+    const Index c = b.centre;
     double lateral = 0.0, worst = 0.0, worst_lateral = 0.0, worst_shear = 0.0;
     for (int k = 1; k <= 30; ++k) {
       const double eps = 10.0 * ey * k / 30;  // to ε = 10 σ_y/E
-      const Mat<3> s = uniaxial_stress(sys, model, c, eps, lateral, R);
+      const Mat<3> s = b.uniaxial(eps, lateral, R);
       model.accept();
       const double exact = bilinear(eps), ep = eps - exact / E;
       worst = std::max(worst, std::abs(s(0, 0) - exact) / kYield);
@@ -179,10 +140,10 @@ TEST(LpsPlastic, CorrectedLatticeFollowsTheBilinearJ2CurveInAnyDirection) {
 
 // Pure shear: elastic slope G, first yield at τ = σ_y/√3 (to the step, 1 % of γ_y).
 TEST(LpsPlastic, PureShearYieldsAtTheVonMisesShearStress) {
-  auto sys = block(true);
-  LpsPlastic<3> model;
-  model.initialise(sys);
-  const Index c = centre(sys);
+  auto b = block(true);
+  auto& sys = b.sys;
+  auto& model = b.model;
+  const Index c = b.centre;
   const double G = kSteel.shear(), tau_y = kYield / std::sqrt(3.0), gamma_y = tau_y / G;
   const double step = 0.01 * gamma_y;  // 1 % of γ_y: the resolution of the yield point
   double gamma_first_yield = 0.0, worst_slope = 0.0;
@@ -190,7 +151,7 @@ TEST(LpsPlastic, PureShearYieldsAtTheVonMisesShearStress) {
     const double gamma = step * k;
     Mat<3> H = Mat<3>::Zero();
     H(0, 1) = H(1, 0) = 0.5 * gamma;
-    apply_affine(sys, H);
+    b.apply_affine(H);
     model.compute_forces(sys, {});
     model.accept();
     const double tau = model.force_state_stress(sys, c)(0, 1);
@@ -241,11 +202,11 @@ TEST(LpsPlastic, BarFollowsTheBilinearCurve) {
 }
 
 TEST(LpsPlastic, RejectRestoresThePlasticState) {
-  auto sys = block();
-  LpsPlastic<3> model;
-  model.initialise(sys);
-  const Index c = centre(sys);
-  apply_affine(sys, Vec<3>(20e-5, -10e-5, -10e-5).asDiagonal());  // 20 × ε_y: plastic
+  auto b = block();
+  auto& sys = b.sys;
+  auto& model = b.model;
+  const Index c = b.centre;
+  b.apply_affine(Vec<3>(20e-5, -10e-5, -10e-5).asDiagonal());  // 20 × ε_y: plastic
   model.compute_forces(sys, {});
   EXPECT_GT((*model.eq_plastic_strain())[c], 0.0);
   EXPECT_GT(model.plastic_work(), 0.0);

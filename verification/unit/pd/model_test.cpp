@@ -3,10 +3,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <stdexcept>
 
+#include "solver/core/error.hpp"
 #include "solver/io/scene.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm::pd {
 namespace {
@@ -49,13 +52,32 @@ TEST(ModelTable, PoissonRatioFollowsTheProperties) {
 
 // A scene's method follows from its model: MPM for type "mpm", PD for a row of the table.
 TEST(ModelTable, SceneMethodFollowsTheModelType) {
-  const std::string head = "[scene]\nid = \"m\"\n[discretization]\ndimension = 2\nplane = \"strain\"\nspacing = 1e-3\n"
-                           "horizon_ratio = 3.015\nthickness = 1e-3\n[[shape]]\ntype = \"box\"\nmin = [0, 0]\n"
-                           "max = [0.01, 0.01]\n[material]\ndensity = 7850\nyoungs_modulus = 200e9\n"
-                           "poissons_ratio = 0.25\n[time]\nsteps = 1\n[model]\ntype = ";
-  for (const auto& info : model_table())
-    EXPECT_EQ(io::parse_scene_text(head + "\"" + info.name + "\"\n", "m.toml").method, io::Method::pd) << info.name;
-  EXPECT_EQ(io::parse_scene_text(head + "\"mpm\"\n", "m.toml").method, io::Method::mpm);
+  for (const auto& info : model_table()) {
+    const test::SceneText text{.dimension = 3, .min = {0, 0, 0}, .max = {0.01, 0.01, 0.01}, .poissons_ratio = "0.25",
+                               .material_keys = test::elastic_range_keys(info.name), .model = info.name};
+    EXPECT_EQ(text.parse().method, io::Method::pd) << info.name;
+  }
+  EXPECT_EQ(test::SceneText{.model = "mpm"}.parse().method, io::Method::mpm);
+}
+
+// A model derived for some settings only is offered in those and refused, with the
+// models that are, in the others.
+TEST(ModelTable, SettingsAModelSupports) {
+  const auto& plastic = model_info("lps_plastic");
+  EXPECT_TRUE(plastic.plastic);
+  EXPECT_TRUE(plastic.supports(core::Setting::solid3d) && plastic.supports(core::Setting::bar1d));
+  EXPECT_FALSE(plastic.supports(core::Setting::plane_stress) || plastic.supports(core::Setting::plane_strain));
+  const auto planar = model_names(core::Setting::plane_strain);
+  EXPECT_EQ(std::count(planar.begin(), planar.end(), "lps_plastic"), 0);
+  EXPECT_EQ(model_names(core::Setting::solid3d).size(), model_table().size());
+  try {
+    test::SceneText{.material_keys = "yield_stress = 1e8\ntangent_modulus = 0\n", .model = "lps_plastic"}.parse("p.toml");
+    ADD_FAILURE() << "a plastic PD model in plane stress was accepted";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("model.type"), std::string::npos) << what;
+    EXPECT_NE(what.find("pmb, lps, mpm"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -1,0 +1,357 @@
+// Elastoplastic state-based PD (docs/models/lps_plastic.md): homogeneous strain
+// paths of an interior particle against the classical J2 law with linear isotropic
+// hardening, and a dynamic run whose energy balance includes the plastic work.
+// Material: the dog-bone steel of Noorian et al. (E = 215 GPa, ν = 0.33, σ_y = 340 MPa,
+// E_t = 1.45 GPa), the material the hybrid's PD region will carry.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "solver/io/scene.hpp"
+#include "solver/pd/lps.hpp"
+#include "solver/sim/run.hpp"
+#include "verification/gates/mpm_gate_util.hpp"
+#include "verification/support/gate.hpp"
+#include "verification/support/pd_fixtures.hpp"
+#include "verification/support/plastic_paths.hpp"
+#include "verification/support/scratch_dir.hpp"
+
+namespace pdmpm {
+namespace {
+
+namespace mu = test::mpm_util;
+using nlohmann::json;
+
+const char* kProblem = "lps_plastic";
+const core::Elastic kSteel{215e9, 0.33, 7800.0};
+const core::J2Hardening kHardening{340e6, 1.45e9};
+const double kYieldStrain = kHardening.yield_stress / kSteel.E;
+
+double bilinear(double eps) {
+  return eps <= kYieldStrain ? kSteel.E * eps : kHardening.yield_stress + kHardening.tangent_modulus * (eps - kYieldStrain);
+}
+
+std::vector<double> scaled(const std::vector<double>& v, double f) {
+  std::vector<double> out(v);
+  for (double& x : out) x *= f;
+  return out;
+}
+
+struct UniaxialCurve {
+  std::vector<double> strain, stress, exact;
+  double worst_stress = 0.0;   // max |σ − σ_J2| / σ_y
+  double worst_lateral = 0.0;  // max |ε_lat − (−νσ/E − ε_p/2)| / ε
+  double worst_transverse = 0.0;
+  double eq_plastic_end = 0.0;
+};
+
+// Uniaxial stress along the axis R e_x to ε = 10 σ_y/E in `steps` increments.
+UniaxialCurve uniaxial_curve(const test::PlasticBlockSpec& spec, const Mat<3>& R, int steps) {
+  test::PlasticBlock b(spec);
+  UniaxialCurve c;
+  double lateral = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    const double eps = 10.0 * kYieldStrain * k / steps;
+    const Mat<3> s = b.uniaxial(eps, lateral, R);
+    b.model.accept();
+    const double exact = bilinear(eps), ep = eps - exact / kSteel.E;
+    c.strain.push_back(eps);
+    c.stress.push_back(s(0, 0));
+    c.exact.push_back(exact);
+    c.worst_stress = std::max(c.worst_stress, std::abs(s(0, 0) - exact) / kHardening.yield_stress);
+    c.worst_lateral = std::max(c.worst_lateral, std::abs(lateral - (-kSteel.nu * exact / kSteel.E - 0.5 * ep)) / eps);
+    c.worst_transverse = std::max({c.worst_transverse, std::abs(s(0, 1)) / kHardening.yield_stress,
+                                   std::abs(s(2, 2)) / kHardening.yield_stress});
+  }
+  c.eq_plastic_end = b.eq_plastic_strain();
+  return c;
+}
+
+const std::string kGeometricReason =
+    "The issue's bound (1 % of σ_y). What separates PD from the small-strain J2 curve: the bond kinematics "
+    "(deformed direction y/|y|, extension |y| − |ξ|) are geometrically exact, so at ε = 10 σ_y/E = 1.6 % the "
+    "force-state stress differs from the small-strain one at O(ε σ).";
+
+TEST(FastLpsPlastic, UniaxialStressFollowsTheBilinearJ2Curve) {
+  const Mat<3> skew = Eigen::AngleAxisd(0.7, Vec<3>(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
+  json plot = json::array();
+  for (const bool axis : {true, false}) {
+    const auto c = uniaxial_curve({.material = kSteel, .hardening = kHardening}, axis ? Mat<3>(Mat<3>::Identity()) : skew, 40);
+    const std::string dir = axis ? "axis" : "skew";
+    const std::string where = axis ? "along a lattice axis" : "along a skew axis (0.7 rad about (1, 2, 3))";
+    test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".stress",
+                       .claim = "Under homogeneous uniaxial stress " + where + " to ε = 10 σ_y/E, the interior particle's "
+                                "axial stress shall follow the bilinear J2 curve (measured: max |σ − σ_J2| / σ_y)",
+                       .measured = c.worst_stress, .expected = 0.01, .compare = test::Compare::at_most,
+                       .tolerance_reason = kGeometricReason,
+                       .source = "[pdmpm] docs/models/lps_plastic.md (derivation); J2 with linear isotropic hardening",
+                       .unit = "", .problem = kProblem});
+    test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".lateral",
+                       .claim = "On the same path the lateral strain shall be −νσ/E − ε_p/2 (isochoric flow) "
+                                "(measured: max |ε_lat − (−νσ/E − ε_p/2)| / ε)",
+                       .measured = c.worst_lateral, .expected = 0.01, .compare = test::Compare::at_most,
+                       .tolerance_reason = "1 % of the axial strain, the precision of the stress claim; the same O(ε) "
+                                           "geometric nonlinearity is the only difference expected.",
+                       .source = "J2 plasticity: plastic flow is deviatoric", .unit = "", .problem = kProblem});
+    test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".eq_plastic_strain",
+                       .claim = "At ε = 10 σ_y/E the model's equivalent plastic strain shall equal the J2 value "
+                                "ε − σ_J2/E (measured: ratio)",
+                       .measured = c.eq_plastic_end / (10.0 * kYieldStrain - bilinear(10.0 * kYieldStrain) / kSteel.E),
+                       .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                       .tolerance_reason = "1 %, as the stress: ε̄_p is work-conjugate to σ̄ by construction.",
+                       .source = "[pdmpm] docs/models/lps_plastic.md", .unit = "", .problem = kProblem});
+    if (axis) plot.push_back(mu::series("J2 bilinear (analytic)", c.strain, scaled(c.exact, 1e-6)));
+    plot.push_back(mu::series(std::string("lps_plastic, ") + (axis ? "[100]" : "skew axis"), c.strain,
+                              scaled(c.stress, 1e-6), axis ? "points" : "dashed"));
+  }
+  test::record_data(kProblem, "01_uniaxial",
+                    {{"kind", "plot"},
+                     {"title", "Uniaxial stress, interior particle of a 15³ block (homogeneous path)"},
+                     {"xlabel", "axial strain ε"},
+                     {"ylabel", "axial stress σ (MPa)"},
+                     {"xscale", "linear"},
+                     {"yscale", "linear"},
+                     {"series", plot},
+                     {"caption", "E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa; δ = 3.015Δx, ω = 1, isotropy "
+                                 "corrected; the lateral strain is solved so that σ_yy = σ_zz = 0 at the particle."}});
+}
+
+// Load to 6 ε_y, unload to zero stress, reload to 8 ε_y.
+TEST(FastLpsPlastic, LoadUnloadReload) {
+  test::PlasticBlock b({.material = kSteel, .hardening = kHardening});
+  double lateral = 0.0;
+  std::vector<double> xs, ys;
+  auto go = [&](double eps) {
+    const double s = b.uniaxial(eps, lateral)(0, 0);
+    b.model.accept();
+    xs.push_back(eps);
+    ys.push_back(s * 1e-6);
+    return s;
+  };
+  const double peak = 6.0 * kYieldStrain;
+  double s_peak = 0.0;
+  for (int k = 1; k <= 30; ++k) s_peak = go(peak * k / 30);
+  const double ep_peak = b.eq_plastic_strain();
+  // Unload by ε_y: elastic, slope E.
+  const double s_down = go(peak - kYieldStrain);
+  const double slope = (s_peak - s_down) / kYieldStrain / kSteel.E;
+  // Unload to σ = 0 (secant on ε): the residual strain.
+  double e0 = peak - kYieldStrain, f0 = s_down, e1 = peak - 1.5 * kYieldStrain, f1 = go(e1);
+  for (int it = 0; it < 40 && std::abs(f1) > 1e-9 * kHardening.yield_stress; ++it) {
+    const double e2 = e1 - f1 * (e1 - e0) / (f1 - f0);
+    e0 = e1, f0 = f1, e1 = e2;
+    f1 = go(e1);
+  }
+  const double residual = e1, residual_j2 = peak - bilinear(peak) / kSteel.E;
+  const bool no_flow_unloading = b.eq_plastic_strain() == ep_peak;
+  // Reload to just below the peak: no yielding; then beyond: the curve continues.
+  go(peak * 0.999);
+  const bool no_flow_reload = b.eq_plastic_strain() == ep_peak;
+  double worst_beyond = 0.0;
+  for (int k = 1; k <= 10; ++k) {
+    const double eps = peak + 2.0 * kYieldStrain * k / 10;
+    worst_beyond = std::max(worst_beyond, std::abs(go(eps) - bilinear(eps)) / kHardening.yield_stress);
+  }
+  test::record_gate({.id = "lps_plastic.cycle.unloading_slope",
+                     .claim = "Unloading from 6 ε_y shall be elastic with slope E (measured: slope / E)",
+                     .measured = slope, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                     .tolerance_reason = "The issue's 1 %; the isotropy-corrected lattice has E exactly for an interior "
+                                         "particle, up to the O(ε) geometric nonlinearity.",
+                     .source = "J2 plasticity: elastic unloading", .unit = "", .problem = kProblem});
+  test::record_gate({.id = "lps_plastic.cycle.residual_strain",
+                     .claim = "The strain left at zero stress after unloading from 6 ε_y shall be the J2 plastic strain "
+                              "ε_peak − σ_J2(ε_peak)/E (measured: ratio)",
+                     .measured = residual / residual_j2, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                     .tolerance_reason = "1 % of the plastic strain: the stress error at the peak (≲ 1 % σ_y) over E is "
+                                         "≲ 1e-2 ε_y, below 1 % of the 4.9 ε_y residual.",
+                     .source = "J2 plasticity", .unit = "", .problem = kProblem});
+  test::record_gate({.id = "lps_plastic.cycle.elastic_reload",
+                     .claim = "Unloading and reloading to 0.999 × the previous peak strain shall not change the "
+                              "equivalent plastic strain (measured: 1 if it did not)",
+                     .measured = no_flow_unloading && no_flow_reload ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0,
+                     .compare = test::Compare::abs, .tolerance_reason = "A yes/no property (bitwise: no return at all).",
+                     .source = "J2 plasticity with isotropic hardening", .unit = "", .problem = kProblem});
+  test::record_gate({.id = "lps_plastic.cycle.reload_curve",
+                     .claim = "Reloaded beyond the previous peak (to 8 ε_y) the stress shall rejoin the bilinear curve "
+                              "(measured: max |σ − σ_J2| / σ_y)",
+                     .measured = worst_beyond, .expected = 0.01, .compare = test::Compare::at_most,
+                     .tolerance_reason = kGeometricReason, .source = "J2 plasticity", .unit = "", .problem = kProblem});
+  std::vector<double> ex, ey;
+  for (double e : xs) ex.push_back(e), ey.push_back(0.0);
+  test::record_data(kProblem, "02_cycle",
+                    {{"kind", "plot"},
+                     {"title", "Load – unload – reload (interior particle, uniaxial stress)"},
+                     {"xlabel", "axial strain ε"},
+                     {"ylabel", "axial stress σ (MPa)"},
+                     {"xscale", "linear"},
+                     {"yscale", "linear"},
+                     {"series", {mu::series("lps_plastic", xs, ys, "points")}},
+                     {"caption", "Loaded to 6 ε_y, unloaded to σ = 0 (residual strain " + std::to_string(residual) +
+                                     ", J2: " + std::to_string(residual_j2) + "), reloaded to 8 ε_y."}});
+}
+
+TEST(FastLpsPlastic, PureShearYieldsAtSigmaYOverRootThree) {
+  test::PlasticBlock b({.material = kSteel, .hardening = kHardening});
+  const double G = kSteel.shear(), tau_y = kHardening.yield_stress / std::sqrt(3.0), gamma_y = tau_y / G;
+  // Bisection on γ for the first yield (trial states only: nothing is committed).
+  double lo = 0.5 * gamma_y, hi = 1.5 * gamma_y, tau_at_yield = 0.0;
+  for (int it = 0; it < 40; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    const double tau = b.shear(mid);
+    if (b.eq_plastic_strain() > 0.0) hi = mid;
+    else lo = mid, tau_at_yield = tau;
+    b.model.reject();
+  }
+  test::record_gate({.id = "lps_plastic.shear.yield",
+                     .claim = "Under homogeneous simple shear the interior particle shall first yield at τ = σ_y/√3 "
+                              "(measured: τ at first yield / (σ_y/√3))",
+                     .measured = tau_at_yield / tau_y, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                     .tolerance_reason = "The issue's 1 %; the bisection resolves γ to 1e-12 γ_y, and at γ_y = 2.4e-3 "
+                                         "the geometric nonlinearity is O(γ) of τ.",
+                     .source = "von Mises: τ_y = σ_y/√3", .unit = "", .problem = kProblem});
+}
+
+// Isochoric flow: θ stays the elastic volume change, tr σ = 3Kθ.
+TEST(FastLpsPlastic, PlasticFlowIsIsochoric) {
+  test::PlasticBlock b({.material = kSteel, .hardening = kHardening});
+  double lateral = 0.0, worst = 0.0;
+  const double K = kSteel.bulk();
+  for (int k = 1; k <= 20; ++k) {
+    const Mat<3> s = b.uniaxial(10.0 * kYieldStrain * k / 20, lateral);
+    b.model.accept();
+    worst = std::max(worst, std::abs(s.trace() - 3.0 * K * b.dilatation()) / kHardening.yield_stress);
+  }
+  test::record_gate({.id = "lps_plastic.isochoric",
+                     .claim = "Along the uniaxial path to 10 ε_y the mean stress shall stay K θ: the dilatation is the "
+                              "elastic volume change and plastic flow adds none (measured: max |tr σ − 3Kθ| / σ_y)",
+                     .measured = worst, .expected = 1e-3, .compare = test::Compare::at_most,
+                     .tolerance_reason = "The second bond moments of the lattice are isotropic, so a traceless plastic "
+                                         "extension adds nothing to θ exactly; what remains is the difference between "
+                                         "the bond kinematics of σ (deformed direction) and of θ (extension), O(ε²) "
+                                         "relative at ε = 1.6 %.",
+                     .source = "[pdmpm] docs/models/lps_plastic.md (isochoric flow)", .unit = "", .problem = kProblem});
+}
+
+// Below yield the plastic model is elastic LPS (same sums, another order).
+TEST(FastLpsPlastic, BelowYieldItIsElasticLps) {
+  test::PlasticBlock b({.material = kSteel, .hardening = kHardening, .isotropic = false});
+  auto elastic_sys = b.sys;
+  pd::Lps<3> elastic;
+  elastic.initialise(elastic_sys);
+  for (Index i = 0; i < b.sys.n_real(); ++i) {
+    const Vec<3> x = b.sys.particles.x0[i];
+    const Vec<3> u(1e-7 * std::sin(x[1] * 700.0), 2e-7 * std::cos(x[2] * 500.0), 1e-4 * x[0] * x[1]);
+    b.sys.particles.u[i] = elastic_sys.particles.u[i] = u;
+  }
+  b.model.compute_forces(b.sys, {});
+  elastic.compute_forces(elastic_sys, {});
+  double fmax = 0.0, diff = 0.0;
+  for (Index i = 0; i < b.sys.n_real(); ++i) {
+    fmax = std::max(fmax, elastic_sys.particles.f[i].norm());
+    diff = std::max(diff, (b.sys.particles.f[i] - elastic_sys.particles.f[i]).norm());
+  }
+  const auto& ep = *b.model.eq_plastic_strain();
+  EXPECT_EQ(*std::max_element(ep.begin(), ep.end()), 0.0) << "the field must stay elastic for this claim";
+  const double worst = diff / fmax;
+  test::record_gate({.id = "lps_plastic.below_yield",
+                     .claim = "Below yield (a non-uniform field, strains ≤ 1e-4) the plastic model's forces shall equal "
+                              "elastic LPS's (isotropy correction off) (measured: max |f − f_LPS| / max |f_LPS|)",
+                     .measured = worst, .expected = 1e-12, .compare = test::Compare::at_most,
+                     .tolerance_reason = "Round-off: the same sums in another order (the LPS kernel sums in SIMD lanes).",
+                     .source = "[pdmpm] docs/models/lps_plastic.md (with p = 0 the force state is LPS's)", .unit = "",
+                     .problem = kProblem});
+}
+
+// The response of a homogeneous state does not depend on the horizon ratio.
+TEST(FastLpsPlastic, HomogeneousResponseIndependentOfHorizonRatio) {
+  std::vector<double> stress;
+  json rows = json::array();
+  for (double m : {2.015, 3.015, 4.015}) {
+    test::PlasticBlock b({.material = kSteel, .hardening = kHardening, .horizon_ratio = m});
+    double lateral = 0.0, s = 0.0;
+    for (int k = 1; k <= 10; ++k) {
+      s = b.uniaxial(5.0 * kYieldStrain * k / 10, lateral)(0, 0);
+      b.model.accept();
+    }
+    stress.push_back(s);
+    rows.push_back({m, s * 1e-6, bilinear(5.0 * kYieldStrain) * 1e-6, b.eq_plastic_strain()});
+  }
+  const auto [lo, hi] = std::minmax_element(stress.begin(), stress.end());
+  test::record_gate({.id = "lps_plastic.horizon_independence",
+                     .claim = "The axial stress at 5 ε_y on the uniaxial path shall not depend on the horizon ratio "
+                              "m = 2.015, 3.015, 4.015 (measured: (max − min) / σ_y)",
+                     .measured = (*hi - *lo) / kHardening.yield_stress, .expected = 0.01, .compare = test::Compare::at_most,
+                     .tolerance_reason = "The issue's 1 %: with the isotropy correction every interior particle answers "
+                                         "a homogeneous state with the continuum moments, whatever m.",
+                     .source = "[pdmpm] docs/models/lps_plastic.md (isotropy correction)", .unit = "", .problem = kProblem});
+  test::record_data(kProblem, "03_horizon",
+                    {{"kind", "table"},
+                     {"title", "Uniaxial stress at ε = 5 σ_y/E vs horizon ratio"},
+                     {"columns", {"m = δ/Δx", "σ (MPa)", "J2 (MPa)", "ε̄_p"}},
+                     {"rows", rows}});
+}
+
+// A 3D bar pulled dynamically far into the plastic range: the energy balance closes
+// with the plastic work (history.csv, summary.json).
+TEST(FastLpsPlastic, EnergyBalanceIncludesPlasticWork) {
+  const test::ScratchDir dir("lps_plastic_energy");
+  const std::string text = R"TOML([scene]
+id = "lps_plastic_energy"
+[discretization]
+dimension = 3
+spacing = 1e-3
+horizon_ratio = 3.015
+[[shape]]
+type = "box"
+min = [0, 0, 0]
+max = [0.024, 0.008, 0.008]
+[material]
+density = 7800
+youngs_modulus = 215e9
+poissons_ratio = 0.33
+yield_stress = 340e6
+tangent_modulus = 1.45e9
+[model]
+type = "lps_plastic"
+damage = false
+[time]
+end_time = 2e-5
+[[boundary]]
+name = "left"
+kind = "fixed"
+region = { type = "box", min = [0, 0, 0], max = [0.0015, 0.008, 0.008] }
+[[boundary]]
+name = "right"
+kind = "velocity"
+value = ["20 * min(t / 5e-6, 1)", "free", "free"]
+region = { type = "box", min = [0.0225, 0, 0], max = [0.024, 0.008, 0.008] }
+[output]
+frames = 2
+fields = ["eq_plastic_strain", "stress", "triaxiality"]
+)TOML";
+  const auto scene = io::parse_scene_text(text, "lps_plastic_energy.toml");
+  sim::RunOptions opt;
+  opt.out_dir = dir.path() / "out";
+  opt.progress = false;
+  const auto r = sim::run_scene(scene, opt);
+  ASSERT_EQ(r.status, "completed") << r.message;
+  const auto& m = r.summary["metrics"];
+  const double work = m["external_work"].get<double>(), plastic = m["plastic_work"].get<double>();
+  ASSERT_GT(plastic, 0.1 * work) << "the bar must flow for this claim";
+  test::record_gate({.id = "lps_plastic.energy_balance",
+                     .claim = "A 3D bar pulled at 20 m/s to " + std::to_string(m["max_eq_plastic_strain"].get<double>()) +
+                              " equivalent plastic strain shall satisfy external work = kinetic + stored + plastic "
+                              "work (measured: |K + U + W_p − W_ext| / W_ext at the end)",
+                     .measured = std::abs(m["energy_error"].get<double>()) / work, .expected = 1e-3,
+                     .compare = test::Compare::at_most,
+                     .tolerance_reason = "The issue's bound. Verlet is not exactly energy-conserving; its O(Δt²) "
+                                         "shadow-energy error and the trapezoidal booking of the boundary work remain.",
+                     .source = "Energy balance of an elastoplastic body", .unit = "", .problem = kProblem});
+}
+
+}  // namespace
+}  // namespace pdmpm
