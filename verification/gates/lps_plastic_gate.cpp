@@ -88,7 +88,7 @@ TEST(FastLpsPlastic, UniaxialStressFollowsTheBilinearJ2Curve) {
                                 "axial stress shall follow the bilinear J2 curve (measured: max |σ − σ_J2| / σ_y)",
                        .measured = c.worst_stress, .expected = 0.01, .compare = test::Compare::at_most,
                        .tolerance_reason = kGeometricReason,
-                       .source = "[pdmpm] docs/models/lps_plastic.md (derivation); J2 with linear isotropic hardening",
+                       .source = "[pdmpm] docs/models/lps_plastic.md (derivation); [simo-hughes1998] (J2, linear isotropic hardening)",
                        .unit = "", .problem = kProblem});
     test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".lateral",
                        .claim = "On the same path the lateral strain shall be −νσ/E − ε_p/2 (isochoric flow) "
@@ -96,7 +96,7 @@ TEST(FastLpsPlastic, UniaxialStressFollowsTheBilinearJ2Curve) {
                        .measured = c.worst_lateral, .expected = 0.01, .compare = test::Compare::at_most,
                        .tolerance_reason = "1 % of the axial strain, the precision of the stress claim; the same O(ε) "
                                            "geometric nonlinearity is the only difference expected.",
-                       .source = "J2 plasticity: plastic flow is deviatoric", .unit = "", .problem = kProblem});
+                       .source = "[simo-hughes1998] (J2 flow is deviatoric)", .unit = "", .problem = kProblem});
     test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".eq_plastic_strain",
                        .claim = "At ε = 10 σ_y/E the model's equivalent plastic strain shall equal the J2 value "
                                 "ε − σ_J2/E (measured: ratio)",
@@ -161,25 +161,25 @@ TEST(FastLpsPlastic, LoadUnloadReload) {
                      .measured = slope, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
                      .tolerance_reason = "The issue's 1 %; the isotropy-corrected lattice has E exactly for an interior "
                                          "particle, up to the O(ε) geometric nonlinearity.",
-                     .source = "J2 plasticity: elastic unloading", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] (elastic unloading)", .unit = "", .problem = kProblem});
   test::record_gate({.id = "lps_plastic.cycle.residual_strain",
                      .claim = "The strain left at zero stress after unloading from 6 ε_y shall be the J2 plastic strain "
                               "ε_peak − σ_J2(ε_peak)/E (measured: ratio)",
                      .measured = residual / residual_j2, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
                      .tolerance_reason = "1 % of the plastic strain: the stress error at the peak (≲ 1 % σ_y) over E is "
                                          "≲ 1e-2 ε_y, below 1 % of the 4.9 ε_y residual.",
-                     .source = "J2 plasticity", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
   test::record_gate({.id = "lps_plastic.cycle.elastic_reload",
                      .claim = "Unloading and reloading to 0.999 × the previous peak strain shall not change the "
                               "equivalent plastic strain (measured: 1 if it did not)",
                      .measured = no_flow_unloading && no_flow_reload ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0,
                      .compare = test::Compare::abs, .tolerance_reason = "A yes/no property (bitwise: no return at all).",
-                     .source = "J2 plasticity with isotropic hardening", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] (isotropic hardening)", .unit = "", .problem = kProblem});
   test::record_gate({.id = "lps_plastic.cycle.reload_curve",
                      .claim = "Reloaded beyond the previous peak (to 8 ε_y) the stress shall rejoin the bilinear curve "
                               "(measured: max |σ − σ_J2| / σ_y)",
                      .measured = worst_beyond, .expected = 0.01, .compare = test::Compare::at_most,
-                     .tolerance_reason = kGeometricReason, .source = "J2 plasticity", .unit = "", .problem = kProblem});
+                     .tolerance_reason = kGeometricReason, .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
   std::vector<double> ex, ey;
   for (double e : xs) ex.push_back(e), ey.push_back(0.0);
   test::record_data(kProblem, "02_cycle",
@@ -212,7 +212,7 @@ TEST(FastLpsPlastic, PureShearYieldsAtSigmaYOverRootThree) {
                      .measured = tau_at_yield / tau_y, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
                      .tolerance_reason = "The issue's 1 %; the bisection resolves γ to 1e-12 γ_y, and at γ_y = 2.4e-3 "
                                          "the geometric nonlinearity is O(γ) of τ.",
-                     .source = "von Mises: τ_y = σ_y/√3", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] (von Mises: τ_y = σ_y/√3)", .unit = "", .problem = kProblem});
 }
 
 // Isochoric flow: θ stays the elastic volume change, tr σ = 3Kθ.
@@ -350,7 +350,7 @@ fields = ["eq_plastic_strain", "stress", "triaxiality"]
                      .compare = test::Compare::at_most,
                      .tolerance_reason = "The issue's bound. Verlet is not exactly energy-conserving; its O(Δt²) "
                                          "shadow-energy error and the trapezoidal booking of the boundary work remain.",
-                     .source = "Energy balance of an elastoplastic body", .unit = "", .problem = kProblem});
+                     .source = "[pdmpm] docs/models/lps_plastic.md (plastic work booked with the committed state)", .unit = "", .problem = kProblem});
 }
 
 }  // namespace
