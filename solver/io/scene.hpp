@@ -80,7 +80,7 @@ struct CrackSpec {
   double threshold = 0.5;
   double path_threshold = 0.35;
   double min_piece_fraction = 0.01;
-  double speed_window = 0.0;  // s; 0 → ten history intervals
+  double speed_window = 0.0;       // s; 0 → ten history intervals
   std::vector<ShapeSpec> exclude;  // regions where no crack is detected
 };
 
@@ -167,19 +167,18 @@ struct Scene {
   std::vector<ShapeSpec> shapes;
 
   core::Elastic material;
-  core::J2Hardening hardening;     // [material] yield_stress, tangent_modulus (plastic laws)
-  core::DuctileFailure failure;    // [material.failure] (plastic laws)
+  core::J2Hardening hardening;   // [material] yield_stress, tangent_modulus (plastic laws)
+  core::DuctileFailure failure;  // [material.failure] (plastic laws)
   std::optional<double> critical_stretch, fracture_energy;
   Method method = Method::pd;
   std::string model = "pmb";  // the PD model's name (model table), or "mpm"
   pd::Influence influence = pd::Influence::constant;
   bool damage = false;
-  bool break_after_force = false;  // model.break_timing = "after_force" (LAMMPS' rule)
+  bool break_after_force = false;          // model.break_timing = "after_force" (LAMMPS' rule)
   bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   bool isotropic_deviatoric = false;       // model.isotropy = "corrected" (plastic PD models)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;  // set when model = "mpm"
-
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;

@@ -16,7 +16,8 @@ void read_mpm_material(const TomlReader& m, Scene& s) {
       if (m.has(key)) m.fail(key, "only for constitutive = \"j2\"");
   }
   if (auto f = m.optional_table("failure")) {
-    if (!j2) m.fail("failure", "the ductile criterion needs constitutive = \"j2\" (it acts on the equivalent plastic strain)");
+    if (!j2)
+      m.fail("failure", "the ductile criterion needs constitutive = \"j2\" (it acts on the equivalent plastic strain)");
     s.failure.enabled = f->boolean("enabled", true);
     s.failure.d0 = f->positive("d0", f->number("d0"));
     s.failure.c = f->number("c");
@@ -32,14 +33,18 @@ void read_mpm_options(const TomlReader& t, Scene& s) {
   if (auto v = t.optional_enum<mpm::UpdateScheme>("update_scheme")) spec.scheme = *v;
   if (auto v = t.optional_number("flip")) spec.flip = t.in_range("flip", *v, 0.0, 1.0, false, false);
   if (auto v = t.optional_number("cell_size")) spec.cell_size = t.positive("cell_size", *v);
-  if (auto v = t.optional_number("cell_factor")) spec.cell_factor = t.in_range("cell_factor", *v, 1.0, 16.0, false, false);
-  if (t.has("cell_size") && t.has("cell_factor")) t.fail("cell_factor", "give at most one of cell_size and cell_factor");
+  if (auto v = t.optional_number("cell_factor"))
+    spec.cell_factor = t.in_range("cell_factor", *v, 1.0, 16.0, false, false);
+  if (t.has("cell_size") && t.has("cell_factor"))
+    t.fail("cell_factor", "give at most one of cell_size and cell_factor");
   if (auto v = t.optional_integer("padding_cells")) {
     if (*v < 2 || *v > 100) t.fail("padding_cells", "must be in [2, 100]");
     spec.padding_cells = static_cast<int>(*v);
   }
-  if (auto v = t.optional_number("damping_viscous")) spec.damping_viscous = t.in_range("damping_viscous", *v, 0.0, 1e12, false, false);
-  if (auto v = t.optional_number("damping_local")) spec.damping_local = t.in_range("damping_local", *v, 0.0, 1.0, false, true);
+  if (auto v = t.optional_number("damping_viscous"))
+    spec.damping_viscous = t.in_range("damping_viscous", *v, 0.0, 1e12, false, false);
+  if (auto v = t.optional_number("damping_local"))
+    spec.damping_local = t.in_range("damping_local", *v, 0.0, 1.0, false, true);
   if (auto n = t.optional_table("nonlocal")) {
     spec.nonlocal.enabled = n->boolean("enabled", true);
     spec.nonlocal.length = n->positive("length", n->number("length"));
@@ -51,14 +56,17 @@ void read_mpm_options(const TomlReader& t, Scene& s) {
 
 void check_mpm_scene(const Scene& s) {
   auto fail = [&](const std::string& key, const std::string& why) { throw InputError(s.file, key, why); };
-  if (!s.precracks.empty()) fail("precrack[0]", "pre-cracks cut PD bonds; the mpm model has none (model a notch as a subtracted shape)");
+  if (!s.precracks.empty())
+    fail("precrack[0]", "pre-cracks cut PD bonds; the mpm model has none (model a notch as a subtracted shape)");
   if (s.indenter) fail("indenter", "only for the peridynamic models");
-  if (s.crack.enabled) fail(s.observes.empty() ? "crack" : s.observes.front().key, "crack observables need PD bonds (pmb, lps)");
+  if (s.crack.enabled)
+    fail(s.observes.empty() ? "crack" : s.observes.front().key, "crack observables need PD bonds (pmb, lps)");
   if (s.time.safety_factor > 1.0) fail("time.safety_factor", "is the CFL number of the mpm model: must be in (0, 1]");
   // Grid boundary conditions select the grid nodes inside a box; tractions the particles in it.
   for (const auto& b : s.boundaries) {
     if (b.kind == BoundaryKind::displacement || b.kind == BoundaryKind::analytic)
-      fail(b.key + ".kind", "the mpm model constrains grid velocities: use kind = \"fixed\", \"velocity\" or \"traction\"");
+      fail(b.key + ".kind",
+           "the mpm model constrains grid velocities: use kind = \"fixed\", \"velocity\" or \"traction\"");
     for (std::size_t k = 0; k < b.region.size(); ++k)
       if (b.region[k].type != "box" || b.region[k].subtract)
         fail(b.region[k].key, "the mpm model takes boundary regions as boxes (type = \"box\"/\"rectangle\", added)");
@@ -66,8 +74,8 @@ void check_mpm_scene(const Scene& s) {
 }
 
 const std::vector<std::string>& mpm_field_names() {
-  static const std::vector<std::string> names{"displacement", "velocity", "stress", "von_mises", "triaxiality",
-                                              "eq_plastic_strain", "failed"};
+  static const std::vector<std::string> names{"displacement", "velocity",          "stress", "von_mises",
+                                              "triaxiality",  "eq_plastic_strain", "failed"};
   return names;
 }
 

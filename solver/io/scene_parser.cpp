@@ -33,7 +33,8 @@ ShapeSpec read_shape(const TomlReader& r, int dim) {
     s.min = r.numbers("min", dim);
     s.max = r.numbers("max", dim);
     for (int a = 0; a < dim; ++a)
-      if (!(s.max[a] >= s.min[a])) r.fail("max", "must be ≥ min in every component (component " + std::to_string(a) + ")");
+      if (!(s.max[a] >= s.min[a]))
+        r.fail("max", "must be ≥ min in every component (component " + std::to_string(a) + ")");
   } else if (s.type == "ball") {
     s.center = r.numbers("center", dim);
     s.radius = r.positive("radius", r.number("radius"));
@@ -85,7 +86,8 @@ void read_discretization(const TomlReader& d, Scene& s) {
   if (ratio || delta) {  // MPM alone needs no horizon
     s.delta = ratio ? *ratio * s.spacing : *delta;
     if (ratio) d.in_range("horizon_ratio", *ratio, 1.0, 20.0, false, false);
-    if (s.delta < s.spacing * (1.0 - 1e-12)) d.fail(delta ? "horizon" : "horizon_ratio", "the horizon δ must be ≥ the spacing Δx (δ/Δx ≥ 1)");
+    if (s.delta < s.spacing * (1.0 - 1e-12))
+      d.fail(delta ? "horizon" : "horizon_ratio", "the horizon δ must be ≥ the spacing Δx (δ/Δx ≥ 1)");
     if (s.delta > 20.0 * s.spacing) d.fail("horizon", "δ/Δx must be ≤ 20 (families would exceed the bond table)");
   }
   if (s.dimension == 2) {
@@ -111,7 +113,8 @@ void read_model(const TomlReader& m, Scene& s) {
     s.method = Method::mpm;
     s.mpm.emplace();  // defaults; [material] and [mpm] fill it
     for (const char* pd_only : {"influence", "damage", "contact"})
-      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (" + names.substr(0, names.size() - 2) + ")");
+      if (m.has(pd_only))
+        m.fail(pd_only, "only for the peridynamic models (" + names.substr(0, names.size() - 2) + ")");
     m.finish();
     return;
   }
@@ -126,14 +129,17 @@ void read_material(const TomlReader& m, Scene& s) {
   const auto K = m.optional_number("bulk_modulus");
   if (E.has_value() == K.has_value()) m.fail("youngs_modulus", "give exactly one of youngs_modulus and bulk_modulus");
   // MPM materials take any ν in (−1, ½); the PD models state their own range.
-  const auto [lo, hi] = s.method == Method::mpm ? std::pair{-1.0, 0.5} : pd::model_info(s.model).poisson_range(s.setting);
+  const auto [lo, hi] =
+      s.method == Method::mpm ? std::pair{-1.0, 0.5} : pd::model_info(s.model).poisson_range(s.setting);
   const auto nu = m.optional_number("poissons_ratio");
   std::ostringstream fixed;
   fixed << lo;
   if (lo == hi) {
     // The model fixes ν; a given value must agree with it.
     if (nu && std::abs(*nu - lo) > 1e-9)
-      m.fail("poissons_ratio", "the " + s.model + " model in " + std::string(name(s.setting)) + " has ν = " + fixed.str() + " only; got " + std::to_string(*nu));
+      m.fail("poissons_ratio",
+             "the " + s.model + " model in " + std::string(name(s.setting)) + " has ν = " + fixed.str() +
+                 " only; got " + std::to_string(*nu));
     s.material.nu = lo;
   } else if (s.setting == core::Setting::bar1d) {
     s.material.nu = nu.value_or(0.25);
@@ -141,12 +147,15 @@ void read_material(const TomlReader& m, Scene& s) {
     if (!nu) m.fail("poissons_ratio", "missing (required for the " + s.model + " model)");
     s.material.nu = m.in_range("poissons_ratio", *nu, lo, hi, true, true);
   }
-  if (E) s.material.E = m.positive("youngs_modulus", *E);
-  else s.material.E = 3.0 * m.positive("bulk_modulus", *K) * (1.0 - 2.0 * s.material.nu);
+  if (E)
+    s.material.E = m.positive("youngs_modulus", *E);
+  else
+    s.material.E = 3.0 * m.positive("bulk_modulus", *K) * (1.0 - 2.0 * s.material.nu);
   if (!(s.material.E > 0.0)) m.fail("bulk_modulus", "gives E ≤ 0 with this Poisson's ratio");
   if (s.method == Method::mpm) {
     for (const char* pd_only : {"critical_stretch", "fracture_energy"})
-      if (m.has(pd_only)) m.fail(pd_only, "only for the peridynamic models (MPM fails particles by [material.failure])");
+      if (m.has(pd_only))
+        m.fail(pd_only, "only for the peridynamic models (MPM fails particles by [material.failure])");
     read_mpm_material(m, s);
     m.finish();
     return;
@@ -155,14 +164,17 @@ void read_material(const TomlReader& m, Scene& s) {
     read_hardening(m, s);
   } else {
     for (const char* key : {"yield_stress", "tangent_modulus"})
-      if (m.has(key)) m.fail(key, "only for the plastic models (type = \"lps_plastic\", or \"mpm\" with constitutive = \"j2\")");
+      if (m.has(key))
+        m.fail(key, "only for the plastic models (type = \"lps_plastic\", or \"mpm\" with constitutive = \"j2\")");
   }
   if (m.has("failure"))
-    m.fail("failure", "the ductile criterion is implemented for type = \"mpm\" (constitutive = \"j2\") only; the PD "
-                      "models fail bonds by critical_stretch or fracture_energy");
+    m.fail("failure",
+           "the ductile criterion is implemented for type = \"mpm\" (constitutive = \"j2\") only; the PD "
+           "models fail bonds by critical_stretch or fracture_energy");
   s.critical_stretch = m.optional_number("critical_stretch");
   s.fracture_energy = m.optional_number("fracture_energy");
-  if (s.critical_stretch && s.fracture_energy) m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
+  if (s.critical_stretch && s.fracture_energy)
+    m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
   if (s.critical_stretch) m.positive("critical_stretch", *s.critical_stretch);
   if (s.fracture_energy) m.positive("fracture_energy", *s.fracture_energy);
   m.finish();
@@ -172,14 +184,16 @@ void read_time(const TomlReader& t, Scene& s) {
   s.time.integrator = t.optional_enum<Integrator>("integrator").value_or(Integrator::verlet);
   if (s.method == Method::mpm) {
     // MPM is explicit with its own grid-based stable step ([mpm] damping for quasi-static runs).
-    if (s.time.integrator != Integrator::verlet) t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
+    if (s.time.integrator != Integrator::verlet)
+      t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
     for (const char* pd_only : {"stable_step", "tolerance", "max_steps", "load_steps"})
       if (t.has(pd_only)) t.fail(pd_only, "only for the peridynamic models");
   }
   s.time.end_time = t.optional_number("end_time");
   s.time.steps = t.optional_integer("steps");
   if (s.time.integrator == Integrator::verlet) {
-    if (s.time.end_time.has_value() == s.time.steps.has_value()) t.fail("end_time", "give exactly one of end_time and steps");
+    if (s.time.end_time.has_value() == s.time.steps.has_value())
+      t.fail("end_time", "give exactly one of end_time and steps");
     if (s.time.end_time) t.positive("end_time", *s.time.end_time);
     if (s.time.steps && *s.time.steps <= 0) t.fail("steps", "must be ≥ 1");
   } else {
@@ -188,7 +202,8 @@ void read_time(const TomlReader& t, Scene& s) {
   }
   s.time.dt = t.optional_number("dt");
   if (s.time.dt) t.positive("dt", *s.time.dt);
-  if (auto f = t.optional_number("safety_factor")) s.time.safety_factor = t.in_range("safety_factor", *f, 0.0, 2.0, true, false);
+  if (auto f = t.optional_number("safety_factor"))
+    s.time.safety_factor = t.in_range("safety_factor", *f, 0.0, 2.0, true, false);
   if (s.time.dt && t.has("safety_factor")) t.fail("safety_factor", "give either dt or safety_factor, not both");
   if (auto e = t.optional_enum<StableStepEstimate>("stable_step")) s.time.estimate = *e;
   if (auto v = t.optional_number("tolerance")) s.time.tolerance = t.in_range("tolerance", *v, 0.0, 1.0, true, true);
@@ -201,7 +216,8 @@ void read_time(const TomlReader& t, Scene& s) {
     if (*v < 1) t.fail("load_steps", "must be ≥ 1");
     s.time.load_steps = *v;
   }
-  if (auto v = t.optional_number("energy_growth_limit")) s.time.energy_growth_limit = t.in_range("energy_growth_limit", *v, 1.0, 1e12, true, false);
+  if (auto v = t.optional_number("energy_growth_limit"))
+    s.time.energy_growth_limit = t.in_range("energy_growth_limit", *v, 1.0, 1e12, true, false);
   t.finish();
 }
 
@@ -212,14 +228,16 @@ void read_boundaries(const TomlReader& root, Scene& s) {
     BoundarySpec spec;
     spec.key = b.path();
     spec.name = b.optional_string("name").value_or("boundary" + std::to_string(k));
-    if (!std::regex_match(spec.name, std::regex("[A-Za-z0-9_]+"))) b.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
+    if (!std::regex_match(spec.name, std::regex("[A-Za-z0-9_]+")))
+      b.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
     const std::string kind = b.string("kind");
     spec.kind = parse_enum<BoundaryKind>(kind, b.file(), b.path("kind"));
     for (const auto& shape : b.table_or_tables("region")) spec.region.push_back(read_shape(shape, s.dimension));
     const auto value = b.optional_expressions("value", s.dimension);
     const bool needs_value = spec.kind == BoundaryKind::displacement || spec.kind == BoundaryKind::velocity ||
-                             spec.kind == BoundaryKind::traction;
-    if (needs_value && !value) b.fail("value", "missing (required for kind = \"" + kind + "\"): one expression per component");
+        spec.kind == BoundaryKind::traction;
+    if (needs_value && !value)
+      b.fail("value", "missing (required for kind = \"" + kind + "\"): one expression per component");
     if (!needs_value && value) b.fail("value", "not used by kind = \"" + kind + "\"");
     if (value) {
       if (value->size() != static_cast<std::size_t>(s.dimension))
@@ -263,8 +281,10 @@ void read_geometry(const TomlReader& root, Scene& s) {
 
   for (const auto& t : root.tables("symmetry")) {
     if (s.method == Method::pd && pd::model_info(s.model).plastic)
-      t.fail("", "symmetry planes are not supported by the " + s.model + " model yet (its plastic state lives on bond "
-                 "sides, and a ghost's reverse bond is in no family); model the whole body");
+      t.fail("",
+             "symmetry planes are not supported by the " + s.model +
+                 " model yet (its plastic state lives on bond sides, and a ghost's reverse bond is in no "
+                 "family); model the whole body");
     SymmetrySpec sym{t.path(), axis_index(t, "axis", s.dimension), t.number("position")};
     t.finish();
     s.symmetries.push_back(sym);
@@ -289,7 +309,8 @@ void read_geometry(const TomlReader& root, Scene& s) {
 void read_loads(const TomlReader& root, Scene& s) {
   if (auto bf = root.optional_table("body_force")) {
     auto v = bf->optional_expressions("density", s.dimension);
-    if (!v || v->size() != static_cast<std::size_t>(s.dimension)) bf->fail("density", "missing: a list of " + std::to_string(s.dimension) + " force densities (N/m³)");
+    if (!v || v->size() != static_cast<std::size_t>(s.dimension))
+      bf->fail("density", "missing: a list of " + std::to_string(s.dimension) + " force densities (N/m³)");
     for (const auto& e : *v) {
       if (e == "free") bf->fail("density", "\"free\" is not a force");
       check_expression(*bf, "density", e);
@@ -305,7 +326,8 @@ void read_loads(const TomlReader& root, Scene& s) {
     spec.stiffness = ind->positive("stiffness", ind->number("stiffness"));
     const std::string law = ind->optional_string("law").value_or("force");
     if (law != "force" && law != "force_density")
-      ind->fail("law", "must be \"force\" (k (R − r)² in N per particle) or \"force_density\" (in N/m³); got \"" + law + "\"");
+      ind->fail("law",
+                "must be \"force\" (k (R − r)² in N per particle) or \"force_density\" (in N/m³); got \"" + law + "\"");
     spec.force_density = law == "force_density";
     ind->finish();
     s.indenter = spec;
@@ -321,7 +343,8 @@ void read_loads(const TomlReader& root, Scene& s) {
 void read_crack(const TomlReader& root, Scene& s) {
   if (auto c = root.optional_table("crack")) {
     s.crack.enabled = true;
-    if (auto v = c->optional_number("threshold")) s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("threshold"))
+      s.crack.threshold = c->in_range("threshold", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("path_threshold"))
       s.crack.path_threshold = c->in_range("path_threshold", *v, 0.0, 1.0, true, false);
     if (auto v = c->optional_number("min_piece_fraction"))
@@ -335,7 +358,8 @@ void read_crack(const TomlReader& root, Scene& s) {
     ObserveSpec o;
     o.key = t.path();
     o.name = t.string("name");
-    if (!std::regex_match(o.name, std::regex("[A-Za-z0-9_]+"))) t.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
+    if (!std::regex_match(o.name, std::regex("[A-Za-z0-9_]+")))
+      t.fail("name", "must be letters, digits and _ only (it names history.csv columns)");
     for (const auto& other : s.observes)
       if (other.name == o.name) t.fail("name", "\"" + o.name + "\" is used by another [[observe]]");
     o.point = t.numbers("point", s.dimension);
@@ -377,7 +401,8 @@ void read_output(const TomlReader& o, Scene& s) {
 
 void read_hardening(const TomlReader& m, Scene& s) {
   s.hardening.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
-  s.hardening.tangent_modulus = m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
+  s.hardening.tangent_modulus =
+      m.in_range("tangent_modulus", m.number("tangent_modulus"), 0.0, s.material.E, false, true);
 }
 
 std::vector<std::string> output_field_names(const Scene& s) {
@@ -403,7 +428,8 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
 
   const TomlReader head = root.table("scene");
   s.id = head.string("id");
-  if (!std::regex_match(s.id, std::regex("[A-Za-z0-9_.-]+"))) head.fail("id", "must be letters, digits, '_', '-' or '.' only");
+  if (!std::regex_match(s.id, std::regex("[A-Za-z0-9_.-]+")))
+    head.fail("id", "must be letters, digits, '_', '-' or '.' only");
   s.description = head.optional_string("description").value_or("");
   head.finish();
 
@@ -412,8 +438,9 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   if (s.method == Method::pd && !pd::model_info(s.model).supports(s.setting)) {
     std::string others;
     for (const auto& n : pd::model_names(s.setting)) others += (others.empty() ? "" : ", ") + n;
-    root.table("model").fail("type", "the " + s.model + " model is not derived for the " + std::string(name(s.setting)) +
-                                         " setting (docs/models/" + s.model + ".md); models for it: " + others + ", mpm");
+    root.table("model").fail("type",
+                             "the " + s.model + " model is not derived for the " + std::string(name(s.setting)) +
+                                 " setting (docs/models/" + s.model + ".md); models for it: " + others + ", mpm");
   }
   read_material(root.table("material"), s);
   if (s.method == Method::mpm) {
@@ -429,8 +456,10 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_boundaries(root, s);
   read_loads(root, s);
   read_crack(root, s);
-  if (auto o = root.optional_table("output")) read_output(*o, s);
-  else s.output.fields = output_field_names(s);
+  if (auto o = root.optional_table("output"))
+    read_output(*o, s);
+  else
+    s.output.fields = output_field_names(s);
   root.finish();
   if (s.method == Method::mpm) check_mpm_scene(s);
   return s;

@@ -29,9 +29,12 @@ void read_pd_model(const TomlReader& m, Scene& s) {
   }
   if (auto c = m.optional_table("contact")) {
     s.contact.enabled = c->boolean("enabled", true);
-    if (auto v = c->optional_number("stiffness_factor")) s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
-    if (auto v = c->optional_number("distance_factor")) s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
-    if (auto v = c->optional_number("max_distance")) s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
+    if (auto v = c->optional_number("stiffness_factor"))
+      s.contact.stiffness_factor = c->positive("stiffness_factor", *v);
+    if (auto v = c->optional_number("distance_factor"))
+      s.contact.distance_factor = c->in_range("distance_factor", *v, 0.0, 1.0, true, false);
+    if (auto v = c->optional_number("max_distance"))
+      s.contact.max_distance = c->in_range("max_distance", *v, 0.0, 3.0, true, false);
     s.contact.bonded_pairs = c->boolean("bonded_pairs", false);
     c->finish();
   }

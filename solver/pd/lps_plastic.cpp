@@ -114,8 +114,8 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     trial_eps_[b] = e;
     moment += t.weight[k] * shell_[k] * p.volume[j] * t.length[k] * e;
   });
-  const double gamma_theta = k_.gamma * k_.d * moment * inv_md_[i];
   theta_c_[i] = k_.d * moment * inv_md_[i];
+  const double gamma_theta = k_.gamma * theta_c_[i];
   double norm2 = 0.0;  // Σ ω β c V ε²
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const double eps = trial_eps_[b] - gamma_theta * t.length[k] - plastic_ext_.committed[b];
@@ -124,8 +124,8 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   });
   const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
   const double ep_n = eq_plastic_.committed[i];
-  const double radius = hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n
-                                   : std::numeric_limits<double>::infinity();
+  const double radius =
+      hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n : std::numeric_limits<double>::infinity();
   double r = 1.0, dep = 0.0;
   if (trial > radius) {
     dep = (trial - radius) / (three_g_ + plastic_modulus_);
@@ -136,7 +136,8 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
   // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs.
-  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) plastic_ext_.trial[b] = plastic_ext_.committed[b];
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    plastic_ext_.trial[b] = plastic_ext_.committed[b];
   if (r == 1.0) return;
   sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
     plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
@@ -238,7 +239,7 @@ double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
     const double c = shell_[k];
     sum += (k_.B * c * (1.0 + k_.d * k_.gamma) * (inv_md_[i] + inv_md_[j]) + k_.d * threeK * (inv_m_[i] + inv_m_[j])) *
-           sys.table.weight[k] * sys.particles.volume[j];
+        sys.table.weight[k] * sys.particles.volume[j];
   });
   return sum;
 }
@@ -247,7 +248,7 @@ double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
 template <int D>
 double LpsPlastic<D>::scalar_force_state(Index i, BondIndex b, int k, double e, double L) const {
   return 3.0 * k_.kappa * theta_[i] * L * inv_m_[i] +
-         shell_[k] * k_.B * (e - k_.gamma * theta_c_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
+      shell_[k] * k_.B * (e - k_.gamma * theta_c_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
 }
 
 template <int D>

@@ -180,8 +180,6 @@ TEST(FastLpsPlastic, LoadUnloadReload) {
                               "(measured: max |σ − σ_J2| / σ_y)",
                      .measured = worst_beyond, .expected = 0.01, .compare = test::Compare::at_most,
                      .tolerance_reason = kGeometricReason, .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
-  std::vector<double> ex, ey;
-  for (double e : xs) ex.push_back(e), ey.push_back(0.0);
   test::record_data(kProblem, "02_cycle",
                     {{"kind", "plot"},
                      {"title", "Load – unload – reload (interior particle, uniaxial stress)"},
