@@ -435,13 +435,6 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
 
   read_model(root.table("model"), s);
   read_discretization(root.table("discretization"), s);
-  if (s.method == Method::pd && !pd::model_info(s.model).supports(s.setting)) {
-    std::string others;
-    for (const auto& n : pd::model_names(s.setting)) others += (others.empty() ? "" : ", ") + n;
-    root.table("model").fail("type",
-                             "the " + s.model + " model is not derived for the " + std::string(name(s.setting)) +
-                                 " setting (docs/models/" + s.model + ".md); models for it: " + others + ", mpm");
-  }
   read_material(root.table("material"), s);
   if (s.method == Method::mpm) {
     if (auto t = root.optional_table("mpm")) read_mpm_options(*t, s);

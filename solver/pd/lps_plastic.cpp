@@ -12,16 +12,17 @@ namespace pdmpm::pd {
 
 template <int D>
 void LpsPlastic<D>::initialise(const System<D>& sys) {
-  if (sys.setting != core::Setting::solid3d && sys.setting != core::Setting::bar1d)
-    throw std::invalid_argument("lps_plastic is implemented for 3d and 1d only (got '" +
-                                std::string(pdmpm::name(sys.setting)) + "')");
   if (sys.particles.n_ghost() > 0)
     throw std::invalid_argument("lps_plastic does not support ghost particles (symmetry planes) yet");
+  setting_ = sys.setting;
   k_ = lps_coefficients(sys.setting, sys.material);
+  bulk_ = sys.material.bulk();
+  shear_ = sys.material.shear();
   hardening_ = sys.hardening;
-  // ζ in ‖t^d‖²_ω = ζ σ̄²/m_d: 5 in 3D (fourth moment 2/15), 1 in a bar; the return's
-  // stiffness is B/ζ = 3G (3D: B = 15G) or E (bar: B = E).
-  zeta_ = sys.setting == core::Setting::bar1d ? 1.0 : 5.0;
+  // ζ in ‖t^d‖²_ω = ζ σ̄²/m_d for an in-plane or 3D deviator: 5 in 3D (fourth moment 2/15),
+  // 8/3 in 2D (fourth moment 1/8, B = 8G, σ̄² = 6G²·4/m Σ ωβV ε²), 1 in a bar; the return's
+  // stiffness is B/ζ = 3G (2D, 3D) or E (bar: B = E).
+  zeta_ = D == 1 ? 1.0 : D == 2 ? 8.0 / 3.0 : 5.0;
   three_g_ = k_.B / zeta_;
   plastic_modulus_ = hardening_ ? hardening_->hardening_modulus(sys.material.E) : 0.0;
   const Index n = sys.particles.n_real;
@@ -52,6 +53,11 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   plastic_ext_.assign(f.n_bonds(), 0.0);
   trial_eps_.assign(f.n_bonds(), 0.0);
   scale_.assign(n, 1.0);
+  mean_term_.assign(n, 0.0);
+  volumetric_energy_.assign(n, 0.0);
+  axial_plastic_.assign(D == 2 ? n : 0, 0.0);
+  axial_elastic_.assign(D == 2 ? n : 0, 0.0);
+  out_of_plane_.assign(D == 2 ? n : 0, 0.0);
   eq_plastic_.assign(n, 0.0);
   plastic_work_ = plastic_work_trial_ = 0.0;
 }
@@ -75,20 +81,21 @@ void LpsPlastic<D>::set_weighted_volumes(const System<D>& sys, Index i) {
 }
 
 // c per stencil offset: 1, or 1 + κ g(n) with κ solving a(κ) = 3 b(κ) for the full
-// stencil, a = Σ w r² c n_x⁴ and b = Σ w r² c n_x² n_y² (w = ωβ; isotropy of a cubic
-// fourth-order tensor: a = 3b). Linear in κ: κ = (3 B_xy − A_x) / (A_xg − 3 B_xyg).
+// stencil, a = Σ w r² c n_x⁴ and b = Σ w r² c n_x² n_y² (w = ωβ; isotropy of a cubic or
+// square fourth-order tensor: a = 3b). Linear in κ: κ = (3 B_xy − A_x) / (A_xg − 3 B_xyg).
+// g = Σ_a n_a⁴ − its mean over directions (3/5 on the sphere, 3/4 on the circle).
 template <int D>
 std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
   const auto& t = sys.table;
   const int n_shapes = sys.families.stencil.size();
   std::vector<double> c(n_shapes, 1.0);
-  if constexpr (D != 3) return c;  // 3D only (initialise refuses the others)
+  if constexpr (D == 1) return c;
   if (!sys.isotropic_deviatoric) return c;
   std::vector<double> g(n_shapes);
   double ax = 0.0, axg = 0.0, bxy = 0.0, bxyg = 0.0;
   for (int k = 0; k < n_shapes; ++k) {
     const Vec<D> nk = t.xi[k] / t.length[k];
-    g[k] = nk.array().pow(4).sum() - 0.6;
+    g[k] = nk.array().pow(4).sum() - (D == 3 ? 0.6 : 0.75);
     const double w = t.weight[k] * t.length[k] * t.length[k];
     const double x4 = std::pow(nk[0], 4), x2y2 = nk[0] * nk[0] * nk[1] * nk[1];
     ax += w * x4, axg += w * x4 * g[k], bxy += w * x2y2, bxyg += w * x2y2 * g[k];
@@ -122,17 +129,27 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     trial_eps_[b] = eps;
     norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
-  const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
   const double ep_n = eq_plastic_.committed[i];
   const double radius =
       hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n : std::numeric_limits<double>::infinity();
-  double r = 1.0, dep = 0.0;
-  if (trial > radius) {
-    dep = (trial - radius) / (three_g_ + plastic_modulus_);
-    r = 1.0 - three_g_ * dep / trial;
+  double r = 1.0, dep = 0.0, sigma = 0.0;
+  if constexpr (D == 2) {
+    double x = 0.0;  // the elastic deviator after the return is the trial one over 1 + x
+    sigma = planar_return(i, norm2, radius, x);
+    r = 1.0 / (1.0 + x);
+    dep = x * sigma / three_g_;
+  } else {
+    const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
+    if (trial > radius) {
+      dep = (trial - radius) / (three_g_ + plastic_modulus_);
+      r = 1.0 - three_g_ * dep / trial;
+    }
+    sigma = r * trial;
+    mean_term_[i] = k_.d * k_.kappa * theta_[i];  // 3Kθ (bar: κ = 0)
+    volumetric_energy_[i] = 0.5 * k_.kappa * theta_[i] * theta_[i];
   }
   scale_[i] = r;
-  sigma_eq_[i] = r * trial;
+  sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
   // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs.
@@ -142,6 +159,54 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
     plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
   });
+}
+
+// The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,
+// and the particle's axial deviator q_e = Q/(1 + x + a) return together; plane strain
+// (a = 0) is radial, plane stress (a = 4G/3K, from σ_zz = 0) solves
+// F(x) = σ̄(x)(1 − Hx/3G) − Y = 0 by Newton from x = 0 (F convex and decreasing, so the
+// iterates rise monotonically to the root). Writes q_p, q_e, ε_zz and the mean term;
+// returns σ̄ after the return.
+template <int D>
+double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double& x) {
+  const double G = shear_, K = bulk_, theta = theta_[i];
+  const bool plane_stress = setting_ == core::Setting::plane_stress;
+  const double dev2 = 4.0 * norm2 * inv_md_[i];  // ε₂ᵈ : ε₂ᵈ of the bonds
+  const double a = plane_stress ? 4.0 * G / (3.0 * K) : 0.0;
+  const double Q = (plane_stress ? 0.5 : 1.0 / 6.0) * theta - axial_plastic_.committed[i];
+  const double six_g2 = 6.0 * G * G;
+  auto equivalent = [&](double y) {
+    return std::sqrt(six_g2 * (dev2 / ((1.0 + y) * (1.0 + y)) + 6.0 * Q * Q / ((1.0 + y + a) * (1.0 + y + a))));
+  };
+  x = 0.0;
+  double sigma = equivalent(0.0);
+  if (sigma > radius) {
+    const double h = plastic_modulus_ / three_g_;
+    if (a == 0.0) {  // radial: the 3D formula
+      const double dep = (sigma - radius) / (three_g_ + plastic_modulus_);
+      const double after = sigma - three_g_ * dep;
+      x = sigma / after - 1.0;
+      sigma = after;
+    } else {
+      for (int it = 0; it < 100; ++it) {
+        const double F = sigma * (1.0 - h * x) - radius;
+        const double b1 = 1.0 + x, b2 = 1.0 + x + a;
+        const double slope = -six_g2 / sigma * (dev2 / (b1 * b1 * b1) + 6.0 * Q * Q / (b2 * b2 * b2));
+        const double step = -F / (slope * (1.0 - h * x) - h * sigma);
+        x += step;
+        sigma = equivalent(x);
+        if (std::abs(step) <= 1e-15 * (1.0 + x)) break;
+      }
+    }
+  }
+  const double qe = Q / (1.0 + x + a);
+  axial_elastic_[i] = qe;
+  axial_plastic_.trial[i] = axial_plastic_.committed[i] + x * qe;
+  out_of_plane_[i] = plane_stress ? 4.0 * G * qe / K - theta : 0.0;  // σ_zz = K tr ε − 4G q_e = 0
+  const double trace = theta + out_of_plane_[i];
+  mean_term_[i] = 2.0 * (K * trace + 2.0 * G * qe);  // 2P, P = (σ_xx + σ_yy)/2
+  volumetric_energy_[i] = 0.5 * K * trace * trace + 6.0 * G * qe * qe;
+  return sigma;
 }
 
 template <int D>
@@ -173,7 +238,7 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   for (Index k = 0; k < n_owners; ++k) return_map(sys, a.fam.particle(k));
 
   // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|.
-  const double B = k_.B, kappa = k_.kappa, three_k = 3.0 * k_.kappa;
+  const double B = k_.B;
   std::int64_t broken_after = 0;
 #pragma omp parallel for schedule(static) reduction(+ : broken_after)
   for (Index k = 0; k < n_owners; ++k) {
@@ -185,13 +250,13 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
       const double L = t.length[s];
       // The elastic deviatoric part after the return is r ε_trial (both sides live together).
       const double eps_i = scale_[i] * trial_eps_[b], eps_j = scale_[j] * trial_eps_[reverse_[b]];
-      const double tij = three_k * theta_[i] * L * inv_m_[i] + shell_[s] * B * eps_i * inv_md_[i];
-      const double tji = three_k * theta_[j] * L * inv_m_[j] + shell_[s] * B * eps_j * inv_md_[j];
+      const double tij = mean_term_[i] * L * inv_m_[i] + shell_[s] * B * eps_i * inv_md_[i];
+      const double tji = mean_term_[j] * L * inv_m_[j] + shell_[s] * B * eps_j * inv_md_[j];
       f += t.weight[s] * p.volume[j] * (tij + tji) / g.l * g.y;
       if (req.energy) dev += t.weight[s] * shell_[s] * p.volume[j] * eps_i * eps_i;
     });
     p.f[i] = f;
-    if (req.energy) (*req.energy)[i] = 0.5 * kappa * theta_[i] * theta_[i] + 0.5 * B * inv_md_[i] * dev;
+    if (req.energy) (*req.energy)[i] = volumetric_energy_[i] + 0.5 * B * inv_md_[i] * dev;
     // Break-after-force rule (LAMMPS): i's side only, whose flags nobody else reads in this pass.
     if (req.break_bonds && req.break_after_force)
       for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
@@ -215,6 +280,7 @@ template <int D>
 void LpsPlastic<D>::accept() {
   plastic_ext_.accept();
   eq_plastic_.accept();
+  axial_plastic_.accept();
   plastic_work_ = plastic_work_trial_;
 }
 
@@ -222,6 +288,7 @@ template <int D>
 void LpsPlastic<D>::reject() {
   plastic_ext_.reject();
   eq_plastic_.reject();
+  axial_plastic_.reject();
   plastic_work_trial_ = plastic_work_;
 }
 
@@ -233,8 +300,9 @@ void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta)
 template <int D>
 double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   // The elastic bound (plastic flow only softens the bonds): the direct term B c ω β (1/m_d,i + 1/m_d,j),
-  // the coupling through θ_c, d γ B c ω β (1/m_d,i + 1/m_d,j), and through θ, d 3K ω β (1/m_i + 1/m_j).
-  const double threeK = 3.0 * k_.kappa;
+  // the coupling through θ_c, d γ B c ω β (1/m_d,i + 1/m_d,j), and through θ, d·dκ ω β (1/m_i + 1/m_j)
+  // (the mean term is dκθ elastically: 3Kθ in 3D, 2κ₂θ in 2D).
+  const double threeK = k_.d * k_.kappa;
   double sum = 0.0;
   sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
     const double c = shell_[k];
@@ -244,10 +312,10 @@ double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   return sum;
 }
 
-// t_ij / (ωβ): 3K θ_i |ξ| / m_i + c B (e − θ_c,i|ξ|/3 − p_ij) / m_d,i, with p from the trial state.
+// t_ij / (ωβ): (mean term) |ξ| / m_i + c B (e − γθ_c,i|ξ| − p_ij) / m_d,i, with p from the trial state.
 template <int D>
 double LpsPlastic<D>::scalar_force_state(Index i, BondIndex b, int k, double e, double L) const {
-  return 3.0 * k_.kappa * theta_[i] * L * inv_m_[i] +
+  return mean_term_[i] * L * inv_m_[i] +
       shell_[k] * k_.B * (e - k_.gamma * theta_c_[i] * L - plastic_ext_.trial[b]) * inv_md_[i];
 }
 
@@ -262,6 +330,23 @@ Mat<D> LpsPlastic<D>::force_state_stress(const System<D>& sys, Index i) const {
     s += t.weight[k] * p.volume[j] * tij / g.l * (g.y * t.xi[k].transpose());
   });
   return s;
+}
+
+template <int D>
+double LpsPlastic<D>::out_of_plane_stress(Index i) const {
+  if (D != 2 || setting_ == core::Setting::plane_stress) return 0.0;
+  return bulk_ * theta_[i] - 4.0 * shear_ * axial_elastic_[i];  // plane strain: K θ + 2G·(−2 q_e)
+}
+
+template <int D>
+Tensor6 LpsPlastic<D>::own_stress(const System<D>& sys, Index i) const {
+  const Mat<D> s = force_state_stress(sys, i);
+  constexpr int row[6] = {0, 1, 2, 0, 1, 0}, col[6] = {0, 1, 2, 1, 2, 2};  // xx yy zz xy yz xz
+  Tensor6 out{};
+  for (int c = 0; c < 6; ++c)
+    if (row[c] < D && col[c] < D) out[c] = 0.5 * (s(row[c], col[c]) + s(col[c], row[c]));
+  if constexpr (D == 2) out[2] = out_of_plane_stress(i);
+  return out;
 }
 
 template class LpsPlastic<1>;

@@ -30,10 +30,20 @@
 // the gradient of W = ½κθ² + (B/2m_d) Σ ωβcV ε² (without it Verlet is unstable).
 //
 // State: p per bond side and ε̄_p per particle, trial/committed (accept/reject).
-// 1D bar (uniaxial stress: A = 0, B = E, no volumetric split; ‖t‖²_ω = σ̄²/m, stiffness
-// E) and 3D; the 2D settings need the out-of-plane plastic strain (not a PD degree of
-// freedom) and are refused with a clear message. No ghost particles
-// (symmetry planes): the reverse bond of a ghost is not in any family.
+// 1D bar (uniaxial stress: A = 0, B = E, no volumetric split; ‖t‖²_ω = σ̄²/m, stiffness E).
+//
+// 2D (plane strain, plane stress): the out-of-plane strain ε_zz is not a PD degree of
+// freedom, so each particle carries one more deviatoric component. The 3D deviator of a
+// state with in-plane strain ε (2×2, trace θ) and ε_zz splits orthogonally into the 2D
+// deviator (what the bonds see, e^d = e − θ|ξ|/2) and q·diag(1, 1, −2), q = (θ − 2ε_zz)/6;
+// the plastic strain likewise into p per bond and q_p per particle. With q_e = q − q_p:
+//   W = ½K (θ + ε_zz)² + G (4/m Σ ωβV ε² + 6 q_e²),   σ̄² = 6G² (4/m Σ ωβV ε² + 6 q_e²),
+//   t_ij = ω (2P_i|ξ|/m_i + cB ε_ij/m_d,i),  B = 8G,  P = K(θ + ε_zz) + 2G q_e (in-plane mean stress).
+// Plane strain: ε_zz = 0, the return is radial as in 3D. Plane stress: ε_zz follows from
+// σ_zz = K(θ + ε_zz) − 4G q_e = 0, so q_e = (θ/2 − q_p)/(1 + x + 4G/3K) while the bonds scale
+// by 1/(1 + x): the return solves one scalar equation for x (Newton, monotone on a convex
+// function), and P = 6G q_e. Below yield both equal elastic 2D LPS (P = κ₂θ).
+// No ghost particles (symmetry planes): the reverse bond of a ghost is not in any family.
 #include <optional>
 
 #include "solver/pd/constants.hpp"
@@ -54,18 +64,26 @@ class LpsPlastic final : public Model<D> {
   void reject() override;
   const std::vector<double>* eq_plastic_strain() const override { return &eq_plastic_.trial; }
   double plastic_work() const override { return plastic_work_trial_; }
-  std::optional<Mat<D>> own_stress(const System<D>& sys, Index i) const override { return force_state_stress(sys, i); }
+  bool has_own_stress() const override { return true; }
+  Tensor6 own_stress(const System<D>& sys, Index i) const override;
+  const std::vector<double>* out_of_plane_strain() const override {
+    return setting_ == core::Setting::plane_stress ? &out_of_plane_ : nullptr;
+  }
 
   // Stress of particle i from its own force state, Σ_j t_ij (ξ ⊗ y/|y|) β V_j
   // (= λθI + 2Gε for an elastic homogeneous state), from the last evaluation.
   Mat<D> force_state_stress(const System<D>& sys, Index i) const;
+  // σ_zz of particle i in the 2D settings (0 in plane stress), from the last evaluation.
+  double out_of_plane_stress(Index i) const;
   // σ̄_i of the last evaluation.
   double equivalent_stress(Index i) const { return sigma_eq_[i]; }
 
  private:
   LpsCoefficients k_{};
+  core::Setting setting_ = core::Setting::solid3d;
   std::optional<core::J2Hardening> hardening_;  // none: never yields
   double zeta_ = 5.0, three_g_ = 0.0, plastic_modulus_ = 0.0;
+  double bulk_ = 0.0, shear_ = 0.0;        // K and G (3D moduli; the 2D settings use them)
   std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
   std::vector<double> theta_c_;            // θ_c = (d/m_d) Σ ωβcV|ξ|e, the deviatoric split's dilatation
   std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
@@ -78,8 +96,14 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> sigma_eq_;           // σ̄ per particle, last evaluation
   std::vector<double> trial_eps_;          // ε = e^d − p_n per bond side, last evaluation
   std::vector<double> scale_;              // r per particle: the elastic part is r ε after the return
+  std::vector<double> mean_term_;          // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
+  std::vector<double> volumetric_energy_;  // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
+  // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.
+  Committed<double> axial_plastic_;
+  std::vector<double> axial_elastic_, out_of_plane_;
 
   void return_map(const System<D>& sys, Index i);
+  double planar_return(Index i, double norm2, double radius, double& x);
   void set_weighted_volumes(const System<D>& sys, Index i);
   static std::vector<double> isotropy_weights(const System<D>& sys);
   double scalar_force_state(Index i, BondIndex b, int k, double e, double L) const;

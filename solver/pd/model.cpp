@@ -1,6 +1,5 @@
 #include "solver/pd/model.hpp"
 
-#include <algorithm>
 #include <stdexcept>
 
 #include "solver/pd/lps.hpp"
@@ -17,25 +16,26 @@ void Model<D>::dilatation(const System<D>& sys, std::vector<double>& theta) cons
   for (Index i = 0; i < sys.particles.n_real; ++i) theta[i] = dilatation_of(sys, i, weighted_volume(sys, i));
 }
 
+template <int D>
+Tensor6 Model<D>::own_stress(const System<D>&, Index) const {
+  throw std::logic_error("model " + name() + " has no stress of its own");
+}
+
 namespace {
 
 template <template <int> class M>
-ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic,
-              std::vector<core::Setting> settings = {}) {
-  return {std::move(name), state_based, pair_potential, plastic, std::move(settings), [] { return std::make_unique<M<1>>(); },
+ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic) {
+  return {std::move(name), state_based, pair_potential, plastic, [] { return std::make_unique<M<1>>(); },
           [] { return std::make_unique<M<2>>(); }, [] { return std::make_unique<M<3>>(); }};
 }
 
 }  // namespace
 
 const std::vector<ModelInfo>& model_table() {
-  using core::Setting;
   //                                   name   state-based pair potential plastic
   static const std::vector<ModelInfo> table = {
       row<Pmb>("pmb", false, true, false), row<Lps>("lps", true, false, false),
-      // 2D needs the out-of-plane plastic strain, which is not a PD degree of freedom
-      // (docs/models/lps_plastic.md, "What is missing").
-      row<LpsPlastic>("lps_plastic", true, false, true, {Setting::bar1d, Setting::solid3d})};
+      row<LpsPlastic>("lps_plastic", true, false, true)};
   return table;
 }
 
@@ -48,10 +48,6 @@ std::pair<double, double> ModelInfo::poisson_range(core::Setting s) const {
   if (const auto nu = fixed_poisson(s)) return {*nu, *nu};
   // ν = ½ is excluded: K = E / (3(1 − 2ν)) must stay finite (and κ₂ in plane stress).
   return pair_potential ? std::pair{0.0, 0.5} : std::pair{-1.0, 0.5};
-}
-
-bool ModelInfo::supports(core::Setting s) const {
-  return settings.empty() || std::find(settings.begin(), settings.end(), s) != settings.end();
 }
 
 template <int D>
@@ -75,13 +71,6 @@ const ModelInfo& model_info(std::string_view name) {
 std::vector<std::string> model_names() {
   std::vector<std::string> names;
   for (const auto& m : model_table()) names.push_back(m.name);
-  return names;
-}
-
-std::vector<std::string> model_names(core::Setting s) {
-  std::vector<std::string> names;
-  for (const auto& m : model_table())
-    if (m.supports(s)) names.push_back(m.name);
   return names;
 }
 

@@ -10,6 +10,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solver/pd/stress.hpp"
 #include "solver/pd/system.hpp"
 
 namespace pdmpm::pd {
@@ -49,10 +50,14 @@ class Model {
   // so far (J); nullptr and 0 for elastic ones.
   virtual const std::vector<double>* eq_plastic_strain() const { return nullptr; }
   virtual double plastic_work() const { return 0.0; }
-  // The model's own stress of particle i from its force state, for models whose stress
-  // is not Hooke's law of the strain (plastic ones); nullopt: the fields use the
-  // deformation-gradient stress of pd/stress.hpp.
-  virtual std::optional<Mat<D>> own_stress(const System<D>& sys, Index i) const { (void)sys, (void)i; return std::nullopt; }
+  // The model's own stress of particle i from its force state (3D tensor, with σ_zz of the
+  // 2D settings), for models whose stress is not Hooke's law of the strain (plastic ones);
+  // the others leave it to the deformation-gradient stress of pd/stress.hpp.
+  virtual bool has_own_stress() const { return false; }
+  virtual Tensor6 own_stress(const System<D>& sys, Index i) const;
+  // Out-of-plane strain ε_zz per real particle where the model carries it (plastic plane
+  // stress); nullptr: the fields take the elastic one, −ν/(1−ν) θ.
+  virtual const std::vector<double>* out_of_plane_strain() const { return nullptr; }
 };
 
 // One row of the model table: what a scene, a run and a test need to know of a
@@ -65,8 +70,6 @@ struct ModelInfo {
   // A pair potential fixes Poisson's ratio by the setting (Cauchy relation).
   bool pair_potential = false;
   bool plastic = false;
-  // The settings the model is derived for; empty: every setting.
-  std::vector<core::Setting> settings;
   std::function<std::unique_ptr<Model<1>>()> make1;
   std::function<std::unique_ptr<Model<2>>()> make2;
   std::function<std::unique_ptr<Model<3>>()> make3;
@@ -76,7 +79,6 @@ struct ModelInfo {
   std::optional<double> fixed_poisson(core::Setting s) const;
   // Admissible Poisson's ratio interval [lo, hi] in a setting.
   std::pair<double, double> poisson_range(core::Setting s) const;
-  bool supports(core::Setting s) const;
   template <int D>
   std::unique_ptr<Model<D>> make() const;
 };
@@ -88,8 +90,6 @@ const ModelInfo* find_model(std::string_view name);
 // The row of a model the caller knows exists (throws std::invalid_argument otherwise).
 const ModelInfo& model_info(std::string_view name);
 std::vector<std::string> model_names();
-// The models a scene in this setting may select.
-std::vector<std::string> model_names(core::Setting s);
 // A new model by name (nullptr if unknown).
 template <int D>
 std::unique_ptr<Model<D>> make_model(const std::string& name);

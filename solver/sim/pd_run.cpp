@@ -211,7 +211,9 @@ void PdRun<D>::frame(std::int64_t step, double t) {
   if (wants("dilatation")) {
     std::vector<double> theta;
     s_.model->dilatation(s_.system, theta);
-    if (s_.system.setting == core::Setting::plane_stress) {
+    if (const auto* ezz = s_.model->out_of_plane_strain()) {
+      for (Index i = 0; i < n; ++i) theta[i] += (*ezz)[i];  // the model's own ε_zz (plastic plane stress)
+    } else if (s_.system.setting == core::Setting::plane_stress) {
       // Report the 3D dilatation: add ε_zz = −ν/(1−ν) (ε_xx + ε_yy).
       const double nu = s_.system.material.nu;
       for (double& th : theta) th *= 1.0 - nu / (1.0 - nu);
@@ -245,16 +247,10 @@ void PdRun<D>::frame(std::int64_t step, double t) {
 // deformation-gradient stress (Hooke's law of the non-local strain).
 template <int D>
 std::vector<pd::Tensor6> PdRun<D>::stresses() const {
-  if (!s_.model->own_stress(s_.system, 0)) return pd::particle_stress(s_.system);
+  if (!s_.model->has_own_stress()) return pd::particle_stress(s_.system);
   std::vector<pd::Tensor6> out(p_.n_real);
-  constexpr int row[6] = {0, 1, 2, 0, 1, 0}, col[6] = {0, 1, 2, 1, 2, 2};  // xx yy zz xy yz xz
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p_.n_real; ++i) {
-    const Mat<D> s = *s_.model->own_stress(s_.system, i);
-    out[i] = {};
-    for (int c = 0; c < 6; ++c)
-      if (row[c] < D && col[c] < D) out[i][c] = 0.5 * (s(row[c], col[c]) + s(col[c], row[c]));
-  }
+  for (Index i = 0; i < p_.n_real; ++i) out[i] = s_.model->own_stress(s_.system, i);
   return out;
 }
 

@@ -221,7 +221,7 @@ void momentum_gates(bool spin) {
                {"xscale", "linear"},
                {"yscale", "log"},
                {"series", json::array()}};
-  for (const auto& model : pd::model_names(D == 2 ? core::Setting::plane_stress : core::Setting::solid3d)) {
+  for (const auto& model : pd::model_names()) {
     std::vector<double> t, d;
     const int steps = D == 2 ? 1500 : 600;
     const auto r = momentum_run<D>(model, spin, steps, &t, &d);
@@ -289,7 +289,7 @@ double slope(const std::vector<double>& t, const std::vector<double>& y) {
 template <int D>
 void energy_gates() {
   json rows = json::array();
-  for (const auto& model : pd::model_names(D == 2 ? core::Setting::plane_stress : core::Setting::solid3d)) {
+  for (const auto& model : pd::model_names()) {
     auto setup = sim::build_pd<D>(io::parse_scene_text(
         body_scene(model, D, D == 2 ? box(2, 30, 15, 0) : box(3, 9, 8, 7), 0.0, test::elastic_range_keys(model)),
         "energy"));

@@ -237,7 +237,7 @@ void patch_suite(const std::string& model, core::Setting setting) {
 
 template <int D>
 void all_models(core::Setting s) {
-  for (const auto& model : pd::model_names(s)) patch_suite<D>(model, s);
+  for (const auto& model : pd::model_names()) patch_suite<D>(model, s);
 }
 
 TEST(FastPatch, Bar1d) { all_models<1>(core::Setting::bar1d); }

@@ -52,11 +52,6 @@ std::string g17(double v) {
 }
 
 std::string dim_name(int D) { return std::to_string(D) + "d"; }
-// The setting of the loaded and free bodies below: a bar, a plane-stress plate, a block.
-core::Setting setting_of(int D) {
-  return D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_stress : core::Setting::solid3d;
-}
-
 // A plate/bar/block with Δx = 1 mm, the left end fixed and the right end pulled
 // by a traction ramp (so a run has energy even when it starts at rest).
 std::string loaded_scene(const std::string& model, int D, double E, double sigma, double ramp, const std::string& time) {
@@ -92,7 +87,7 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
 template <int D>
 void bounded_at_09() {
   json rows = json::array();
-  for (const auto& model : pd::model_names(setting_of(D))) {
+  for (const auto& model : pd::model_names()) {
     std::string shape = D == 2 ? "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [0.016, 0.012]\n"
                                : "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [0.007, 0.006, 0.006]\n";
     std::string text = "[scene]\nid = \"bounded\"\n[discretization]\ndimension = " + std::to_string(D) +
@@ -170,7 +165,7 @@ TEST(FastStability, BoundedAt09Lanczos3d) { bounded_at_09<3>(); }
 
 template <int D>
 void unstable_at_15(json& rows) {
-  for (const auto& model : pd::model_names(setting_of(D))) {
+  for (const auto& model : pd::model_names()) {
     const std::string base = loaded_scene(model, D, 200e9, 1e7, 2e-6, "steps = 1\n");
     // In-process estimates of the same scene (deterministic: the force loops gather, the
     // Lanczos dot products are serial).
@@ -580,7 +575,7 @@ TEST(FastStability, DegenerateBodies) {
 
   // Empty family: one particle of a block loses all its bonds (both sides).
   bool empty_ok = true;
-  for (const auto& model : pd::model_names(core::Setting::plane_strain)) {
+  for (const auto& model : pd::model_names()) {
     test::PatchConfig cfg;
     cfg.model = model;
     cfg.setting = core::Setting::plane_strain;
@@ -651,7 +646,7 @@ std::vector<Vec<D>> scaled_run(const std::string& model, double E, int steps, do
 
 TEST(FastStability, StiffAndSoftMaterialsScale) {
   json rows = json::array();
-  for (const auto& model : pd::model_names(setting_of(2))) {
+  for (const auto& model : pd::model_names()) {
     auto ref_setup =
         sim::build_pd<2>(io::parse_scene_text(loaded_scene(model, 2, 200e9, 2e7, 2e-6, "steps = 1\n"), "ref"));
     const double dt_ref = 0.8 * time::silling_askari_step<2>(ref_setup.system, *ref_setup.model);

@@ -89,7 +89,7 @@ std::size_t differing(const std::vector<T>& a, const std::vector<T>& b) {
 template <int D>
 void invariance(json& rows) {
   const int saved = omp_get_max_threads();
-  for (const auto& model : pd::model_names(D == 2 ? core::Setting::plane_strain : core::Setting::solid3d)) {
+  for (const auto& model : pd::model_names()) {
     const int steps = D == 2 ? 300 : 250;
     const auto one = run<D>(model, 1, steps);
     const auto two = run<D>(model, 2, steps);

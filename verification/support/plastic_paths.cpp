@@ -7,31 +7,42 @@
 
 namespace pdmpm::test {
 
-PlasticBlock::PlasticBlock(const PlasticBlockSpec& s) : spec(s) {
+template <int D>
+PlasticBlock<D>::PlasticBlock(const PlasticBlockSpec& s) : spec(s) {
   BlockSpec block;
   // 4δ + 1 sites per side: the centre's family and its neighbours' families are full.
   block.sites = 2 * static_cast<int>(std::ceil(2.0 * s.horizon_ratio)) + 1;
   block.horizon_ratio = s.horizon_ratio;
   block.influence = s.influence;
   block.material = s.material;
-  sys = make_block<3>(block);
+  block.setting = s.setting;
+  sys = make_block<D>(block);
   sys.hardening = s.hardening;
   sys.isotropic_deviatoric = s.isotropic;
   model.initialise(sys);
-  const Vec<3> mid = Vec<3>::Constant(0.5 * (block.sites - 1) * block.spacing);
+  const Vec<D> mid = Vec<D>::Constant(0.5 * (block.sites - 1) * block.spacing);
   for (Index i = 0; i < sys.n_real(); ++i)
     if ((sys.particles.x0[i] - mid).norm() < (sys.particles.x0[centre] - mid).norm()) centre = i;
 }
 
-void PlasticBlock::apply_affine(const Mat<3>& H) {
+template <int D>
+void PlasticBlock<D>::apply_affine(const Mat<D>& H) {
   for (Index i = 0; i < sys.n_real(); ++i) sys.particles.u[i] = H * sys.particles.x0[i];
 }
 
-Mat<3> PlasticBlock::uniaxial(double eps, double& lateral, const Mat<3>& R) {
+template <int D>
+Mat<D> PlasticBlock<D>::stress_under(const Mat<D>& H) {
+  apply_affine(H);
+  model.compute_forces(sys, {});
+  return model.force_state_stress(sys, centre);
+}
+
+template <int D>
+Mat<D> PlasticBlock<D>::uniaxial(double eps, double& lateral, const Mat<D>& R) {
   auto sigma_at = [&](double l) {
-    apply_affine(R * Vec<3>(eps, l, l).asDiagonal() * R.transpose());
-    model.compute_forces(sys, {});
-    return Mat<3>(R.transpose() * model.force_state_stress(sys, centre) * R);
+    Vec<D> diagonal = Vec<D>::Constant(l);
+    diagonal[0] = eps;
+    return Mat<D>(R.transpose() * stress_under(R * diagonal.asDiagonal() * R.transpose()) * R);
   };
   // Secant on σ_yy(l) = 0; σ_zz follows by symmetry of the path (checked by the callers).
   const double tol = 1e-9 * spec.hardening.yield_stress;
@@ -46,18 +57,21 @@ Mat<3> PlasticBlock::uniaxial(double eps, double& lateral, const Mat<3>& R) {
   return sigma_at(l1);
 }
 
-double PlasticBlock::shear(double gamma) {
-  Mat<3> H = Mat<3>::Zero();
+template <int D>
+double PlasticBlock<D>::shear(double gamma) {
+  Mat<D> H = Mat<D>::Zero();
   H(0, 1) = H(1, 0) = 0.5 * gamma;
-  apply_affine(H);
-  model.compute_forces(sys, {});
-  return model.force_state_stress(sys, centre)(0, 1);
+  return stress_under(H)(0, 1);
 }
 
-double PlasticBlock::dilatation() const {
+template <int D>
+double PlasticBlock<D>::dilatation() const {
   std::vector<double> theta;
   model.dilatation(sys, theta);
   return theta[centre];
 }
+
+template class PlasticBlock<2>;
+template class PlasticBlock<3>;
 
 }  // namespace pdmpm::test

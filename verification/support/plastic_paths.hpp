@@ -1,9 +1,9 @@
 #pragma once
 // Homogeneous strain paths through the elastoplastic LPS model (unit tests and the
-// lps_plastic gates): a cube of lattice sites whose centre particle is ≥ 2δ from every
-// face, so an affine displacement gives it an exactly homogeneous state, and the
-// uniaxial-stress path along any axis (lateral strain solved so the transverse stress
-// vanishes at the centre).
+// lps_plastic gates): a cube (3D) or square (2D) of lattice sites whose centre particle
+// is ≥ 2δ from every face, so an affine displacement gives it an exactly homogeneous
+// state, and the uniaxial-stress path along any in-plane axis (lateral strain solved so
+// the transverse in-plane stress vanishes at the centre).
 #include "solver/core/material.hpp"
 #include "solver/pd/lps_plastic.hpp"
 
@@ -15,25 +15,29 @@ struct PlasticBlockSpec {
   bool isotropic = true;           // System::isotropic_deviatoric
   double horizon_ratio = 3.015;    // m = δ/Δx
   pd::Influence influence = pd::Influence::constant;
+  core::Setting setting = core::Setting::solid3d;  // or plane_stress / plane_strain (D = 2)
 };
 
+template <int D>
 class PlasticBlock {
  public:
   explicit PlasticBlock(const PlasticBlockSpec& spec);
 
-  void apply_affine(const Mat<3>& H);  // u = H x0 for every particle
+  void apply_affine(const Mat<D>& H);  // u = H x0 for every particle
   // Stress at the centre (force-state stress, in the frame of the loading axis R e_x)
   // for uniaxial stress with axial strain eps; `lateral` is the starting guess and
   // returns the lateral strain found. Evaluates the trial state; the caller accepts.
-  Mat<3> uniaxial(double eps, double& lateral, const Mat<3>& R = Mat<3>::Identity());
+  Mat<D> uniaxial(double eps, double& lateral, const Mat<D>& R = Mat<D>::Identity());
+  // Stress at the centre under the homogeneous strain H (sym) after one evaluation.
+  Mat<D> stress_under(const Mat<D>& H);
   // Shear stress σ_xy at the centre under simple shear γ (ε_xy = γ/2).
   double shear(double gamma);
   double eq_plastic_strain() const { return (*model.eq_plastic_strain())[centre]; }
-  double dilatation() const;  // θ of the centre
+  double dilatation() const;  // θ of the centre (in-plane in 2D)
 
   PlasticBlockSpec spec;
-  pd::System<3> sys;
-  pd::LpsPlastic<3> model;
+  pd::System<D> sys;
+  pd::LpsPlastic<D> model;
   Index centre = 0;
 };
 

@@ -148,7 +148,6 @@ CASES = {
     "plastic_tangent_above_e": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = 6e10")),
     "plastic_tangent_equal_e": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = 50e9")),
     "plastic_tangent_negative": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = -1e9")),
-    "plastic_in_plane_strain": ("model.type | not derived for the plane_strain setting", BASE.replace('type = "lps"\ninfluence = "constant"', 'type = "lps_plastic"').replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8\ntangent_modulus = 1e9")),
     "plastic_symmetry": ("symmetry[0] | symmetry planes are not supported", PLASTIC_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
     "plastic_ductile_failure": ("material.failure | implemented for type = \"mpm\"", PLASTIC_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
     "yield_for_elastic_pd": ("material.yield_stress | only for the plastic models", replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8")),

@@ -68,8 +68,6 @@ TEST(Cli, UsageErrorsExitWithTwo) {
 TEST(Cli, SmallScenesOfEachModelRun) {
   for (const auto& model : pdmpm::pd::model_names())
     for (int dim : {2, 3}) {
-      if (!pdmpm::pd::model_info(model).supports(dim == 2 ? pdmpm::core::Setting::plane_strain : pdmpm::core::Setting::solid3d))
-        continue;
       const std::string box = dim == 2 ? "0.012, 0.008" : "0.008, 0.006, 0.006";
       const pdmpm::test::SceneText text{
           .id = "tiny_" + model + std::to_string(dim),

@@ -60,25 +60,5 @@ TEST(ModelTable, SceneMethodFollowsTheModelType) {
   EXPECT_EQ(test::SceneText{.model = "mpm"}.parse().method, io::Method::mpm);
 }
 
-// A model derived for some settings only is offered in those and refused, with the
-// models that are, in the others.
-TEST(ModelTable, SettingsAModelSupports) {
-  const auto& plastic = model_info("lps_plastic");
-  EXPECT_TRUE(plastic.plastic);
-  EXPECT_TRUE(plastic.supports(core::Setting::solid3d) && plastic.supports(core::Setting::bar1d));
-  EXPECT_FALSE(plastic.supports(core::Setting::plane_stress) || plastic.supports(core::Setting::plane_strain));
-  const auto planar = model_names(core::Setting::plane_strain);
-  EXPECT_EQ(std::count(planar.begin(), planar.end(), "lps_plastic"), 0);
-  EXPECT_EQ(model_names(core::Setting::solid3d).size(), model_table().size());
-  try {
-    test::SceneText{.material_keys = "yield_stress = 1e8\ntangent_modulus = 0\n", .model = "lps_plastic"}.parse("p.toml");
-    ADD_FAILURE() << "a plastic PD model in plane stress was accepted";
-  } catch (const InputError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("model.type"), std::string::npos) << what;
-    EXPECT_NE(what.find("pmb, lps, mpm"), std::string::npos) << what;
-  }
-}
-
 }  // namespace
 }  // namespace pdmpm::pd
