@@ -206,6 +206,8 @@ void read_pd_model(const TomlReader& model, Scene& s);
 void read_mpm_material(const TomlReader& material, Scene& s);
 // [material] yield_stress and tangent_modulus (0 ≤ E_t < E), for every plastic law.
 void read_hardening(const TomlReader& material, Scene& s);
+// [material.failure]: the ductile criterion ε_f = d₀ exp(cη) (d0 > 0, c, rule), MPM's and plastic PD's.
+void read_ductile_failure(const TomlReader& material, Scene& s);
 void read_mpm_options(const TomlReader& table, Scene& s);
 // Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,
 // displacement/analytic boundaries, non-box regions) for model type "mpm".

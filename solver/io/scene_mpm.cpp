@@ -15,14 +15,10 @@ void read_mpm_material(const TomlReader& m, Scene& s) {
     for (const char* key : {"yield_stress", "tangent_modulus"})
       if (m.has(key)) m.fail(key, "only for constitutive = \"j2\"");
   }
-  if (auto f = m.optional_table("failure")) {
+  if (m.has("failure")) {
     if (!j2)
       m.fail("failure", "the ductile criterion needs constitutive = \"j2\" (it acts on the equivalent plastic strain)");
-    s.failure.enabled = f->boolean("enabled", true);
-    s.failure.d0 = f->positive("d0", f->number("d0"));
-    s.failure.c = f->number("c");
-    if (auto r = f->optional_enum<core::FailureRule>("rule")) s.failure.rule = *r;
-    f->finish();
+    read_ductile_failure(m, s);
   }
 }
 

@@ -167,10 +167,13 @@ void read_material(const TomlReader& m, Scene& s) {
       if (m.has(key))
         m.fail(key, "only for the plastic models (type = \"lps_plastic\", or \"mpm\" with constitutive = \"j2\")");
   }
-  if (m.has("failure"))
-    m.fail("failure",
-           "the ductile criterion is implemented for type = \"mpm\" (constitutive = \"j2\") only; the PD "
-           "models fail bonds by critical_stretch or fracture_energy");
+  if (m.has("failure")) {
+    if (!pd::model_info(s.model).plastic)
+      m.fail("failure",
+             "the ductile criterion acts on the equivalent plastic strain: type = \"lps_plastic\", or \"mpm\" with "
+             "constitutive = \"j2\"; the elastic PD models fail bonds by critical_stretch or fracture_energy");
+    read_ductile_failure(m, s);
+  }
   s.critical_stretch = m.optional_number("critical_stretch");
   s.fracture_energy = m.optional_number("fracture_energy");
   if (s.critical_stretch && s.fracture_energy)
@@ -399,6 +402,15 @@ void read_output(const TomlReader& o, Scene& s) {
 
 }  // namespace
 
+void read_ductile_failure(const TomlReader& m, Scene& s) {
+  const TomlReader f = m.table("failure");
+  s.failure.enabled = f.boolean("enabled", true);
+  s.failure.d0 = f.positive("d0", f.number("d0"));
+  s.failure.c = f.number("c");
+  if (auto r = f.optional_enum<core::FailureRule>("rule")) s.failure.rule = *r;
+  f.finish();
+}
+
 void read_hardening(const TomlReader& m, Scene& s) {
   s.hardening.yield_stress = m.positive("yield_stress", m.number("yield_stress"));
   s.hardening.tangent_modulus =
@@ -441,9 +453,12 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   } else if (root.has("mpm")) {
     root.fail("mpm", "only for model type = \"mpm\"");
   }
-  if (s.damage && !s.critical_stretch && !s.fracture_energy && root.table("model").has("damage"))
-    root.fail("model.damage", "damage = true needs material.critical_stretch or material.fracture_energy");
-  s.damage = s.damage && (s.critical_stretch || s.fracture_energy);
+  const bool any_failure = s.critical_stretch || s.fracture_energy || (s.method == Method::pd && s.failure.enabled);
+  if (s.damage && !any_failure && root.table("model").has("damage"))
+    root.fail("model.damage", "damage = true needs material.critical_stretch, material.fracture_energy or [material.failure]");
+  if (!s.damage && s.method == Method::pd && s.failure.enabled)
+    root.fail("material.failure", "model.damage = false switches every failure rule off; remove one of the two");
+  s.damage = s.damage && any_failure;
   read_geometry(root, s);
   read_time(root.table("time"), s);
   read_boundaries(root, s);

@@ -59,6 +59,8 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   axial_elastic_.assign(D == 2 ? n : 0, 0.0);
   out_of_plane_.assign(D == 2 ? n : 0, 0.0);
   eq_plastic_.assign(n, 0.0);
+  ductile_damage_.assign(sys.ductile_failure.enabled ? n : 0, 0.0);
+  failing_.assign(sys.ductile_failure.enabled ? n : 0, 0);
   plastic_work_ = plastic_work_trial_ = 0.0;
 }
 
@@ -270,10 +272,50 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
       }
   }
   newly += broken_after;
+  if (req.break_bonds && sys.ductile_failure.enabled) newly += fail_particles(sys);
   double work = 0.0;
   for (Index i = 0; i < n; ++i) work += dissipation_[i];
   plastic_work_trial_ = plastic_work_ + work;
   return newly;
+}
+
+// The ductile criterion on every owner that has flowed (the state of this evaluation);
+// the bonds of the particles that fail break on both sides, in index order.
+template <int D>
+std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
+  const auto& rule = sys.ductile_failure;
+  const auto fam = sys.family_view();
+  const Index n_owners = fam.n_owners;
+  std::int64_t any = 0;
+#pragma omp parallel for schedule(static) reduction(+ : any)
+  for (Index k = 0; k < n_owners; ++k) {
+    const Index i = fam.particle(k);
+    failing_[i] = 0;
+    const double ep = eq_plastic_.trial[i];
+    if (ep == 0.0) continue;
+    const double eps_f = rule.d0 * std::exp(rule.c * triaxiality(own_stress(sys, i)));
+    if (rule.rule == core::FailureRule::strain) {
+      failing_[i] = ep >= eps_f;
+    } else {
+      ductile_damage_.trial[i] = ductile_damage_.committed[i] + (ep - eq_plastic_.committed[i]) / eps_f;
+      failing_[i] = ductile_damage_.trial[i] >= 1.0;
+    }
+    any += failing_[i];
+  }
+  if (any == 0) return 0;
+  std::int64_t broken = 0;
+  auto& flags = sys.bonds.flags.trial;
+  for (Index k = 0; k < n_owners; ++k) {
+    const Index i = fam.particle(k);
+    if (!failing_[i]) continue;
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+      for (BondIndex side : {b, reverse_[b]})
+        if (!(flags[side] & kBondBroken)) {
+          flags[side] |= kBondBroken;
+          ++broken;
+        }
+  }
+  return broken;
 }
 
 template <int D>
@@ -281,6 +323,7 @@ void LpsPlastic<D>::accept() {
   plastic_ext_.accept();
   eq_plastic_.accept();
   axial_plastic_.accept();
+  ductile_damage_.accept();
   plastic_work_ = plastic_work_trial_;
 }
 
@@ -289,6 +332,7 @@ void LpsPlastic<D>::reject() {
   plastic_ext_.reject();
   eq_plastic_.reject();
   axial_plastic_.reject();
+  ductile_damage_.reject();
   plastic_work_trial_ = plastic_work_;
 }
 

@@ -44,6 +44,12 @@
 // by 1/(1 + x): the return solves one scalar equation for x (Newton, monotone on a convex
 // function), and P = 6G q_e. Below yield both equal elastic 2D LPS (P = κ₂θ).
 // No ghost particles (symmetry planes): the reverse bond of a ghost is not in any family.
+//
+// Ductile failure (optional, System::ductile_failure; Noorian et al. eqs 8–9): ε_f = d₀ exp(cη)
+// with η the triaxiality of the particle's own stress; rule "strain" fails when ε̄_p ≥ ε_f,
+// "accumulated" when ∫ dε̄_p/ε_f ≥ 1. A particle that fails loses every bond, both sides, at
+// the end of the evaluation that found it (its bonds act once more, as with LAMMPS' rule for
+// the critical stretch), so the check reads the state the forces came from.
 #include <optional>
 
 #include "solver/pd/constants.hpp"
@@ -100,9 +106,13 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> volumetric_energy_;  // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
   // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.
   Committed<double> axial_plastic_;
+  // Ductile failure: ∫ dε̄_p/ε_f per particle (rule "accumulated"), and who failed in this evaluation.
+  Committed<double> ductile_damage_;
+  std::vector<std::uint8_t> failing_;
   std::vector<double> axial_elastic_, out_of_plane_;
 
   void return_map(const System<D>& sys, Index i);
+  std::int64_t fail_particles(System<D>& sys);
   double planar_return(Index i, double norm2, double radius, double& x);
   void set_weighted_volumes(const System<D>& sys, Index i);
   static std::vector<double> isotropy_weights(const System<D>& sys);

@@ -30,6 +30,7 @@ struct System {
   core::Setting setting = core::Setting::solid3d;
   core::Elastic material;
   std::optional<core::J2Hardening> hardening;  // plastic models; none: elastic
+  core::DuctileFailure ductile_failure;        // plastic models: ε_f = d₀ exp(cη) on ε̄_p (off by default)
   double delta = 0.0;    // horizon δ
   double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
   Influence influence = Influence::constant;

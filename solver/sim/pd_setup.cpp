@@ -1,5 +1,6 @@
 #include "solver/sim/pd_setup.hpp"
 
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 
@@ -54,7 +55,10 @@ PdSetup<D> build_pd(const io::Scene& s) {
   sys.influence = s.influence;
   sys.partial_volume = s.partial_volume;
   sys.continuum_weighted_volume = s.continuum_weighted_volume;
-  if (pd::model_info(s.model).plastic) sys.hardening = s.hardening;
+  if (pd::model_info(s.model).plastic) {
+    sys.hardening = s.hardening;
+    sys.ductile_failure = s.failure;
+  }
   sys.isotropic_deviatoric = s.isotropic_deviatoric;
 
   std::vector<bc::SymmetryPlane> planes;
@@ -79,10 +83,12 @@ PdSetup<D> build_pd(const io::Scene& s) {
   }
   out.damage = s.damage;
   out.break_after_force = s.break_after_force;
+  // With the ductile criterion alone no bond breaks by stretch (s₀ = ∞).
   if (s.damage)
     out.critical_stretch = s.critical_stretch ? *s.critical_stretch
-                                              : pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy,
-                                                                     s.delta, sys.measure);
+                           : s.fracture_energy ? pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy,
+                                                                      s.delta, sys.measure)
+                                               : std::numeric_limits<double>::infinity();
 
   for (const auto& b : s.boundaries) {
     auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(b.region), s.spacing);

@@ -19,6 +19,7 @@ PlasticBlock<D>::PlasticBlock(const PlasticBlockSpec& s) : spec(s) {
   sys = make_block<D>(block);
   sys.hardening = s.hardening;
   sys.isotropic_deviatoric = s.isotropic;
+  sys.ductile_failure = s.failure;
   model.initialise(sys);
   const Vec<D> mid = Vec<D>::Constant(0.5 * (block.sites - 1) * block.spacing);
   for (Index i = 0; i < sys.n_real(); ++i)
@@ -33,7 +34,7 @@ void PlasticBlock<D>::apply_affine(const Mat<D>& H) {
 template <int D>
 Mat<D> PlasticBlock<D>::stress_under(const Mat<D>& H) {
   apply_affine(H);
-  model.compute_forces(sys, {});
+  sys.bonds.pending_breaks += model.compute_forces(sys, request);  // as pd::Simulation books them
   return model.force_state_stress(sys, centre);
 }
 
@@ -69,6 +70,79 @@ double PlasticBlock<D>::dilatation() const {
   std::vector<double> theta;
   model.dilatation(sys, theta);
   return theta[centre];
+}
+
+template <int D>
+std::vector<int> PlasticBlock<D>::live_sides() const {
+  std::vector<int> n(sys.n_real(), 0);
+  for (Index i = 0; i < sys.n_real(); ++i)
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+      if (sys.bonds.live(b)) ++n[i], ++n[sys.families.neighbor[b]];
+  return n;
+}
+
+template <int D>
+FailureRecord PlasticBlock<D>::load_until_failure(const std::function<Mat<D>(double)>& path, double step, int max_steps) {
+  FailureRecord r;
+  const auto& rule = sys.ductile_failure;
+  const Index n = sys.n_real();
+  std::vector<double> damage(n, 0.0), ep_committed(n, 0.0);
+  std::vector<std::uint8_t> must_fail(n);
+  for (int k = 1; k <= max_steps && !r.centre_failed; ++k) {
+    PlasticBlock twin = *this;
+    twin.request.break_bonds = false;
+    twin.stress_under(path(k * step));
+    const auto& ep = *twin.model.eq_plastic_strain();
+    const std::vector<int> alive = live_sides();
+    for (Index i = 0; i < n; ++i) {
+      must_fail[i] = 0;
+      if (ep[i] == 0.0 || alive[i] == 0) continue;
+      const double eps_f = rule.d0 * std::exp(rule.c * pd::triaxiality(twin.model.own_stress(twin.sys, i)));
+      if (rule.rule == core::FailureRule::strain) {
+        must_fail[i] = ep[i] >= eps_f;
+      } else {
+        damage[i] += (ep[i] - ep_committed[i]) / eps_f;
+        must_fail[i] = damage[i] >= 1.0;
+      }
+      ep_committed[i] = ep[i];
+    }
+    const std::vector<int> before = live_sides();
+    stress_under(path(k * step));
+    model.accept();
+    sys.bonds.accept();
+    const std::vector<int> after = live_sides();
+    for (Index i = 0; i < n; ++i) {
+      r.failures += must_fail[i];
+      if (must_fail[i]) {
+        r.mismatches += after[i] != 0;
+        continue;
+      }
+      // Bonds of i lost this step must all lead to particles that failed.
+      int lost_to_failed = 0;
+      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+        if (must_fail[sys.families.neighbor[b]]) lost_to_failed += 2;  // both sides
+      r.mismatches += before[i] - after[i] > lost_to_failed;
+    }
+    r.centre_failed = after[centre] == 0;
+    r.steps = k;
+  }
+  return r;
+}
+
+template <int D>
+double PlasticBlock<D>::homogeneous_onset(const std::function<Mat<D>(double)>& path, double step, int max_steps) {
+  const auto& rule = sys.ductile_failure;
+  const bool breaking = request.break_bonds;
+  request.break_bonds = false;
+  double onset = 0.0;
+  for (int k = 1; k <= max_steps && onset == 0.0; ++k) {
+    stress_under(path(k * step));
+    model.accept();
+    const double ep = eq_plastic_strain();
+    if (ep > 0.0 && ep >= rule.d0 * std::exp(rule.c * pd::triaxiality(model.own_stress(sys, centre)))) onset = ep;
+  }
+  request.break_bonds = breaking;
+  return onset;
 }
 
 template class PlasticBlock<2>;

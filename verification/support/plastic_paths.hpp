@@ -4,6 +4,8 @@
 // is ≥ 2δ from every face, so an affine displacement gives it an exactly homogeneous
 // state, and the uniaxial-stress path along any in-plane axis (lateral strain solved so
 // the transverse in-plane stress vanishes at the centre).
+#include <functional>
+
 #include "solver/core/material.hpp"
 #include "solver/pd/lps_plastic.hpp"
 
@@ -16,6 +18,15 @@ struct PlasticBlockSpec {
   double horizon_ratio = 3.015;    // m = δ/Δx
   pd::Influence influence = pd::Influence::constant;
   core::Setting setting = core::Setting::solid3d;  // or plane_stress / plane_strain (D = 2)
+  core::DuctileFailure failure{};                   // System::ductile_failure (off by default)
+};
+
+// The ductile criterion along a proportional path (PlasticBlock::load_until_failure).
+struct FailureRecord {
+  bool centre_failed = false;
+  int steps = 0;
+  int failures = 0;    // particle failures seen (every particle, every step)
+  int mismatches = 0;  // particles whose fate differs from the rule applied to the same evaluation
 };
 
 template <int D>
@@ -34,10 +45,23 @@ class PlasticBlock {
   double shear(double gamma);
   double eq_plastic_strain() const { return (*model.eq_plastic_strain())[centre]; }
   double dilatation() const;  // θ of the centre (in-plane in 2D)
+  // Steps the block along u = path(λ) x0, λ = k·step (k = 1 … max_steps), committing each
+  // step, until the centre has failed. Each step is first evaluated on a copy without
+  // failure; the rule applied to that state (ε̄_p and η of every particle; the accumulated
+  // damage tracked here) says who must fail; then the block takes the step and every
+  // particle's fate is compared: a particle that must fail loses every bond side, one that
+  // must not loses only bonds to particles that fail.
+  FailureRecord load_until_failure(const std::function<Mat<D>(double)>& path, double step, int max_steps);
+  int live_sides(Index i) const { return live_sides()[i]; }
+  std::vector<int> live_sides() const;  // per particle: its live bond sides and its neighbours' towards it
+  // The centre's ε̄_p at the first step where the strain rule holds, ε̄_p ≥ d₀ exp(cη), on the
+  // homogeneous path (no bond breaks: the state the rule reads before anything fails); 0 if never.
+  double homogeneous_onset(const std::function<Mat<D>(double)>& path, double step, int max_steps);
 
   PlasticBlockSpec spec;
   pd::System<D> sys;
   pd::LpsPlastic<D> model;
+  pd::ForceRequest request;  // what every evaluation asks (bond breaking off by default)
   Index centre = 0;
 };
 

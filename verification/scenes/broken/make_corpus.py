@@ -57,7 +57,7 @@ def mpm(old, new):
     return MPM_BASE.replace(old, new, 1)
 
 
-# The same material as an elastoplastic PD block (3D: the plastic model is derived for 1D and 3D).
+# The same material as an elastoplastic PD block (3D; the plain base, 2D, serves the plastic model as well).
 PLASTIC_BASE = (replace('type = "lps"\ninfluence = "constant"', 'type = "lps_plastic"')
                 .replace('dimension = 2\nplane = "strain"', "dimension = 3").replace("thickness = 1e-3\n", "")
                 .replace('type = "rectangle"\nmin = [0.0, 0.0]\nmax = [0.02, 0.01]', 'type = "box"\nmin = [0.0, 0.0, 0.0]\nmax = [0.012, 0.008, 0.008]')
@@ -149,7 +149,10 @@ CASES = {
     "plastic_tangent_equal_e": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = 50e9")),
     "plastic_tangent_negative": ("material.tangent_modulus | must be in [0, 5e+10)", plastic("tangent_modulus = 1e9", "tangent_modulus = -1e9")),
     "plastic_symmetry": ("symmetry[0] | symmetry planes are not supported", PLASTIC_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
-    "plastic_ductile_failure": ("material.failure | implemented for type = \"mpm\"", PLASTIC_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
+    "ductile_failure_for_elastic_pd": ("material.failure | acts on the equivalent plastic strain", BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
+    "plastic_failure_damage_off": ("material.failure | switches every failure rule off", plastic('type = "lps_plastic"', 'type = "lps_plastic"\ndamage = false') + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
+    "plastic_failure_zero_d0": ("material.failure.d0 | must be > 0", PLASTIC_BASE + "\n[material.failure]\nd0 = 0\nc = -1.5\n"),
+    "plastic_failure_unknown_rule": ("material.failure.rule | must be one of strain, accumulated", PLASTIC_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\nrule = \"sum\"\n"),
     "yield_for_elastic_pd": ("material.yield_stress | only for the plastic models", replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8")),
     "isotropy_for_elastic_pd": ("model.isotropy | only for the plastic models", replace('influence = "constant"', 'influence = "constant"\nisotropy = "lattice"')),
     "plastic_unknown_isotropy": ("model.isotropy | must be one of corrected, lattice", plastic('type = "lps_plastic"', 'type = "lps_plastic"\nisotropy = "cubic"')),
