@@ -99,9 +99,9 @@ class LpsPlastic final : public Model<D> {
   Committed<double> eq_plastic_;           // ε̄_p per particle
   std::vector<double> dissipation_;        // V_i σ̄ Δε̄_p of the last evaluation (J)
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
-  std::vector<double> sigma_eq_;           // σ̄ per particle, last evaluation
-  std::vector<double> trial_eps_;          // ε = e^d − p_n per bond side, last evaluation
-  std::vector<double> scale_;              // r per particle: the elastic part is r ε after the return
+  std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
+  std::vector<double> trial_eps_;                         // ε = e^d − p_n per bond side, last evaluation
+  std::vector<double> scale_;                             // r per particle: the elastic part is r ε after the return
   std::vector<double> mean_term_;          // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
   std::vector<double> volumetric_energy_;  // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
   // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.

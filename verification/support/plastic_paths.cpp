@@ -1,8 +1,10 @@
 #include "verification/support/plastic_paths.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
+#include "solver/pd/lps.hpp"
 #include "verification/support/pd_fixtures.hpp"
 
 namespace pdmpm::test {
@@ -73,6 +75,21 @@ double PlasticBlock<D>::dilatation() const {
 }
 
 template <int D>
+double PlasticBlock<D>::difference_from_elastic_lps() {
+  auto elastic_sys = sys;
+  pd::Lps<D> elastic;
+  elastic.initialise(elastic_sys);
+  model.compute_forces(sys, request);
+  elastic.compute_forces(elastic_sys, request);
+  double fmax = 0.0, diff = 0.0;
+  for (Index i = 0; i < sys.n_real(); ++i) {
+    fmax = std::max(fmax, elastic_sys.particles.f[i].norm());
+    diff = std::max(diff, (sys.particles.f[i] - elastic_sys.particles.f[i]).norm());
+  }
+  return diff / fmax;
+}
+
+template <int D>
 std::vector<int> PlasticBlock<D>::live_sides() const {
   std::vector<int> n(sys.n_real(), 0);
   for (Index i = 0; i < sys.n_real(); ++i)
@@ -82,7 +99,8 @@ std::vector<int> PlasticBlock<D>::live_sides() const {
 }
 
 template <int D>
-FailureRecord PlasticBlock<D>::load_until_failure(const std::function<Mat<D>(double)>& path, double step, int max_steps) {
+FailureRecord PlasticBlock<D>::load_until_failure(const std::function<Mat<D>(double)>& path, double step,
+                                                  int max_steps) {
   FailureRecord r;
   const auto& rule = sys.ductile_failure;
   const Index n = sys.n_real();

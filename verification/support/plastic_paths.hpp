@@ -14,11 +14,11 @@ namespace pdmpm::test {
 struct PlasticBlockSpec {
   core::Elastic material{215e9, 0.33, 7800.0};
   core::J2Hardening hardening{340e6, 1.45e9};
-  bool isotropic = true;           // System::isotropic_deviatoric
-  double horizon_ratio = 3.015;    // m = δ/Δx
+  bool isotropic = true;         // System::isotropic_deviatoric
+  double horizon_ratio = 3.015;  // m = δ/Δx
   pd::Influence influence = pd::Influence::constant;
   core::Setting setting = core::Setting::solid3d;  // or plane_stress / plane_strain (D = 2)
-  core::DuctileFailure failure{};                   // System::ductile_failure (off by default)
+  core::DuctileFailure failure{};                  // System::ductile_failure (off by default)
 };
 
 // The ductile criterion along a proportional path (PlasticBlock::load_until_failure).
@@ -52,6 +52,9 @@ class PlasticBlock {
   // particle's fate is compared: a particle that must fail loses every bond side, one that
   // must not loses only bonds to particles that fail.
   FailureRecord load_until_failure(const std::function<Mat<D>(double)>& path, double step, int max_steps);
+  // max |f − f_LPS| / max |f_LPS| of one evaluation at the current displacements against
+  // elastic LPS on a copy of the body (the below-yield claim).
+  double difference_from_elastic_lps();
   int live_sides(Index i) const { return live_sides()[i]; }
   std::vector<int> live_sides() const;  // per particle: its live bond sides and its neighbours' towards it
   // The centre's ε̄_p at the first step where the strain rule holds, ε̄_p ≥ d₀ exp(cη), on the
