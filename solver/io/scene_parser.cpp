@@ -455,7 +455,8 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   }
   const bool any_failure = s.critical_stretch || s.fracture_energy || (s.method == Method::pd && s.failure.enabled);
   if (s.damage && !any_failure && root.table("model").has("damage"))
-    root.fail("model.damage", "damage = true needs material.critical_stretch, material.fracture_energy or [material.failure]");
+    root.fail("model.damage",
+              "damage = true needs material.critical_stretch, material.fracture_energy or [material.failure]");
   if (!s.damage && s.method == Method::pd && s.failure.enabled)
     root.fail("material.failure", "model.damage = false switches every failure rule off; remove one of the two");
   s.damage = s.damage && any_failure;

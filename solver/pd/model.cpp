@@ -25,17 +25,21 @@ namespace {
 
 template <template <int> class M>
 ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic) {
-  return {std::move(name), state_based, pair_potential, plastic, [] { return std::make_unique<M<1>>(); },
-          [] { return std::make_unique<M<2>>(); }, [] { return std::make_unique<M<3>>(); }};
+  return {std::move(name),
+          state_based,
+          pair_potential,
+          plastic,
+          [] { return std::make_unique<M<1>>(); },
+          [] { return std::make_unique<M<2>>(); },
+          [] { return std::make_unique<M<3>>(); }};
 }
 
 }  // namespace
 
 const std::vector<ModelInfo>& model_table() {
   //                                   name   state-based pair potential plastic
-  static const std::vector<ModelInfo> table = {
-      row<Pmb>("pmb", false, true, false), row<Lps>("lps", true, false, false),
-      row<LpsPlastic>("lps_plastic", true, false, true)};
+  static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false), row<Lps>("lps", true, false, false),
+                                               row<LpsPlastic>("lps_plastic", true, false, true)};
   return table;
 }
 

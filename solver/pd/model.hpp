@@ -16,8 +16,8 @@
 namespace pdmpm::pd {
 
 struct ForceRequest {
-  bool break_bonds = false;        // apply the critical-stretch rule this evaluation
-  double critical_stretch = 0.0;   // s₀
+  bool break_bonds = false;       // apply the critical-stretch rule this evaluation
+  double critical_stretch = 0.0;  // s₀
   // false: a bond with s ≥ s₀ breaks before it acts (pdmpm's rule); true: it acts
   // once more in this evaluation and breaks if s > s₀ (LAMMPS' PERI rule).
   bool break_after_force = false;
@@ -41,7 +41,11 @@ class Model {
   virtual void dilatation(const System<D>& sys, std::vector<double>& theta) const;
   // Row sum Σ_j V_j C_ij of the bond stiffness of particle i (Silling & Askari 2005);
   // negative if the model has no such bound.
-  virtual double stiffness_row_sum(const System<D>& sys, Index i) const { (void)sys; (void)i; return -1.0; }
+  virtual double stiffness_row_sum(const System<D>& sys, Index i) const {
+    (void)sys;
+    (void)i;
+    return -1.0;
+  }
   // Model state beyond the bond flags (plastic models), trial/committed like them:
   // accept() commits what the last evaluation wrote, reject() returns to the last commit.
   virtual void accept() {}

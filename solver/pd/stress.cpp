@@ -27,8 +27,12 @@ Tensor6 hooke(const Mat<D>& eps, const core::Elastic& m, core::Setting s) {
     }
   } else {
     const double tr = eps.trace();
-    out = {lam * tr + 2.0 * G * eps(0, 0), lam * tr + 2.0 * G * eps(1, 1), lam * tr + 2.0 * G * eps(2, 2),
-           2.0 * G * eps(0, 1),            2.0 * G * eps(1, 2),            2.0 * G * eps(0, 2)};
+    out = {lam * tr + 2.0 * G * eps(0, 0),
+           lam * tr + 2.0 * G * eps(1, 1),
+           lam * tr + 2.0 * G * eps(2, 2),
+           2.0 * G * eps(0, 1),
+           2.0 * G * eps(1, 2),
+           2.0 * G * eps(0, 2)};
   }
   return out;
 }

@@ -31,8 +31,8 @@ struct System {
   core::Elastic material;
   std::optional<core::J2Hardening> hardening;  // plastic models; none: elastic
   core::DuctileFailure ductile_failure;        // plastic models: ε_f = d₀ exp(cη) on ε̄_p (off by default)
-  double delta = 0.0;    // horizon δ
-  double measure = 1.0;  // thickness (2D), area (1D), 1 (3D)
+  double delta = 0.0;                          // horizon δ
+  double measure = 1.0;                        // thickness (2D), area (1D), 1 (3D)
   Influence influence = Influence::constant;
   PartialVolume partial_volume = PartialVolume::seed001;
   // LPS weighted volume: false → the discrete sum over each family (docs/models/lps.md; exact
@@ -48,8 +48,12 @@ struct System {
 
   kernels::FamilyView family_view() {
     const bool all = owners.empty();
-    return {all ? families.n_owners() : static_cast<Index>(owners.size()), all ? nullptr : owners.data(),
-            particles.size(), families.offsets.data(), families.neighbor.data(), families.shape.data(),
+    return {all ? families.n_owners() : static_cast<Index>(owners.size()),
+            all ? nullptr : owners.data(),
+            particles.size(),
+            families.offsets.data(),
+            families.neighbor.data(),
+            families.shape.data(),
             bonds.kernel_flags()};
   }
 
