@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <map>
+#include <sstream>
 #include <stdexcept>
 
 #include "solver/sim/run.hpp"
@@ -31,6 +33,24 @@ GateRun run_for_gate(const io::Scene& scene, const std::string& problem, const s
   }
   g.summary = r.summary;
   return g;
+}
+
+std::vector<double> GateRun::history(const std::string& column) const {
+  std::ifstream in(dir / "history.csv");
+  std::string line, cell;
+  if (!std::getline(in, line)) throw std::runtime_error("no history.csv in " + dir.string());
+  std::istringstream header(line);
+  int index = -1;
+  for (int k = 0; std::getline(header, cell, ','); ++k)
+    if (cell == column) index = k;
+  if (index < 0) throw std::runtime_error("history.csv has no column " + column);
+  std::vector<double> values;
+  while (std::getline(in, line)) {
+    std::istringstream row(line);
+    for (int k = 0; k <= index && std::getline(row, cell, ','); ++k)
+      if (k == index) values.push_back(std::stod(cell));
+  }
+  return values;
 }
 
 void record_image(const std::string& problem, const std::string& name, const Raster& img, const std::string& title,

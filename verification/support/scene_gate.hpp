@@ -21,6 +21,8 @@ struct GateRun {
   nlohmann::json summary;
   std::filesystem::path dir;  // results/work/<problem>/<tag>
   FieldsReader fields() const { return FieldsReader((dir / "fields.h5").string()); }
+  // One column of history.csv by its header name (throws if there is none).
+  std::vector<double> history(const std::string& column) const;
 };
 
 // Runs the scene quietly into results/work/<problem>/<tag>; fails the test (and
