@@ -9,13 +9,16 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <iostream>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "solver/io/scene.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
+#include "solver/pd/stress.hpp"
 #include "solver/sim/run.hpp"
+#include "solver/time/stable_step.hpp"
 #include "verification/gates/mpm_gate_util.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/pd_fixtures.hpp"
@@ -506,6 +509,89 @@ TEST(FastLpsPlastic, DuctileFailureOnset) {
                      .tolerance_reason = "2 %: the path's step (0.1 ε_y of strain, ≤ 1 % of ε̄_p at failure); η is "
                                          "exact to O(ε) = 1e-4 at these strains.",
                      .source = "[noorian] eqs 8–9; [hooputra2004] (c < 0)", .unit = "", .problem = kProblem});
+}
+
+// Deviatoric hold (the test that exposed the divergence of LAMMPS' peri/eps under
+// sustained flow): a cube whose outer 2δ layer follows the isochoric strain
+// λ(t)·diag(e, −e, 0), λ ramped to 1 and then held, its interior free and damped
+// (velocity Verlet with v ← v(1 − c Δt) after each step, c Δt = 2e-3). e puts the
+// equivalent strain ε̄ = √(2/3 ε:ε) at 2.2 times its first-yield value σ_y/(3G); along
+// this proportional path J2 gives ε̄_p = (3G ε̄ − σ_y)/(3G + H), σ̄ = σ_y + H ε̄_p.
+TEST(FastLpsPlastic, DeviatoricHoldKeepsTheJ2Plateau) {
+  test::PlasticBlockSpec spec;
+  spec.material = kSteel;
+  spec.hardening = kHardening;
+  spec.horizon_ratio = 2.0;  // m = 2 keeps 10⁴ steps of a 11³ cube cheap; the response is m-independent (gate above)
+  spec.sites = 11;
+  test::PlasticBlock<3> block(spec);
+  auto& p = block.sys.particles;
+  const Index n = block.sys.n_real();
+  std::vector<bool> free(n);
+  for (Index i = 0; i < n; ++i) free[i] = test::distance_to_boundary(block.sys, i) > 2.0 * block.sys.delta;
+  const double G = kSteel.E / (2 * (1 + kSteel.nu)), H = kHardening.hardening_modulus(kSteel.E);
+  const double eq_strain = 2.2 * kHardening.yield_stress / (3 * G), e = std::sqrt(3.0) / 2.0 * eq_strain;
+  const double ep_exact = (3 * G * eq_strain - kHardening.yield_stress) / (3 * G + H);
+  const double plateau = kHardening.yield_stress + H * ep_exact;
+  Mat<3> strain = Mat<3>::Zero();
+  strain(0, 0) = e, strain(1, 1) = -e;
+
+  const double dt = 0.8 * time::silling_askari_step(block.sys, block.model), rho = kSteel.rho, damping = 2e-3 / dt;
+  const int ramp = 2000, hold = 10000;
+  std::vector<double> energy;
+  auto evaluate = [&](bool with_energy) {
+    block.request.energy = with_energy ? &energy : nullptr;
+    block.model.compute_forces(block.sys, block.request);
+    block.model.accept();
+  };
+  for (Index i = 0; i < n; ++i) p.v[i].setZero(), p.u[i].setZero();
+  evaluate(false);
+  double lowest = 1e300, highest = 0.0, kinetic = 0.0, stored = 0.0;
+  bool finite = true;
+  for (int step = 1; step <= ramp + hold; ++step) {
+    const double load = std::min(1.0, static_cast<double>(step) / ramp);
+    for (Index i = 0; i < n; ++i) {
+      if (!free[i]) {
+        p.u[i] = load * strain * p.x0[i];
+        continue;
+      }
+      p.v[i] += 0.5 * dt * p.f[i] / rho;
+      p.u[i] += dt * p.v[i];
+    }
+    const bool last = step == ramp + hold;
+    evaluate(last);
+    kinetic = 0.0;
+    for (Index i = 0; i < n; ++i)
+      if (free[i]) {
+        p.v[i] = (p.v[i] + 0.5 * dt * p.f[i] / rho) * (1.0 - damping * dt);
+        kinetic += 0.5 * rho * p.volume[i] * p.v[i].squaredNorm();
+        finite = finite && p.u[i].allFinite() && p.v[i].allFinite();
+      }
+    if (step > ramp) {
+      const double s = pd::von_mises(block.model.own_stress(block.sys, block.centre));
+      lowest = std::min(lowest, s), highest = std::max(highest, s);
+    }
+  }
+  for (Index i = 0; i < n; ++i) stored += energy[i] * p.volume[i];
+  const double worst = std::max(std::abs(highest - plateau), std::abs(lowest - plateau)) / plateau;
+  std::cout << "hold: plateau " << plateau << " range [" << lowest << ", " << highest << "] ε̄_p "
+            << block.eq_plastic_strain() << " exact " << ep_exact << " K/U " << kinetic / stored << "\n";
+  ASSERT_TRUE(finite) << "NaN or infinity in the held block";
+  test::record_gate({.id = "lps_plastic.deviatoric_hold.plateau",
+                     .claim = "A cube strained at constant volume to 2.2× the yield strain (outer 2δ layer prescribed) "
+                              "and held for 10⁴ damped steps: the centre's σ̄ shall stay at the J2 plateau σ_y + H ε̄_p "
+                              "within 1 % throughout the hold",
+                     .measured = worst, .expected = 0.01, .compare = test::Compare::at_most,
+                     .tolerance_reason = "The issue's bound: the interior lags the ramped layer dynamically, so its "
+                                         "path is proportional only up to the damped vibration",
+                     .source = "[mitchell2011] deviatoric return; [simo-hughes1998] J2 along a proportional path", .unit = "",
+                     .problem = kProblem});
+  test::record_gate({.id = "lps_plastic.deviatoric_hold.kinetic",
+                     .claim = "At the end of the hold the kinetic energy of the free interior shall be ≤ 1e-10 of the "
+                              "stored elastic energy (no sustained flow feeds motion)",
+                     .measured = kinetic / stored, .expected = 1e-10, .compare = test::Compare::at_most,
+                     .tolerance_reason = "The issue's bound; 10⁴ steps of c Δt = 2e-3 damp a free vibration by e⁻²⁰",
+                     .source = "[pdmpm] the committed plastic state does not return again at a held strain", .unit = "",
+                     .problem = kProblem});
 }
 
 // A 3D bar pulled dynamically far into the plastic range: the energy balance closes

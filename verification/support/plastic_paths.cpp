@@ -12,8 +12,7 @@ namespace pdmpm::test {
 template <int D>
 PlasticBlock<D>::PlasticBlock(const PlasticBlockSpec& s) : spec(s) {
   BlockSpec block;
-  // 4δ + 1 sites per side: the centre's family and its neighbours' families are full.
-  block.sites = 2 * static_cast<int>(std::ceil(2.0 * s.horizon_ratio)) + 1;
+  block.sites = s.sites > 0 ? s.sites : 2 * static_cast<int>(std::ceil(2.0 * s.horizon_ratio)) + 1;
   block.horizon_ratio = s.horizon_ratio;
   block.influence = s.influence;
   block.material = s.material;

@@ -19,6 +19,7 @@ struct PlasticBlockSpec {
   pd::Influence influence = pd::Influence::constant;
   core::Setting setting = core::Setting::solid3d;  // or plane_stress / plane_strain (D = 2)
   core::DuctileFailure failure{};                  // System::ductile_failure (off by default)
+  int sites = 0;  // lattice sites per side; 0: 4δ/Δx + 1 (the centre's and its neighbours' families full)
 };
 
 // The ductile criterion along a proportional path (PlasticBlock::load_until_failure).
