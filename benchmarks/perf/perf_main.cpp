@@ -1,6 +1,6 @@
 // pdmpm_perf: the performance driver of issue 6, in one process run —
 //   memory per bond (memory_per_bond.hpp), the force kernels' thread scaling and
-//   roofline (kernel_scaling.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
+//   roofline (kernel_scaling.hpp), the cost of plasticity (plastic_cost.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
 //   (lammps_side_by_side.hpp).
 // Raw results: <results>/bench/perf/*.json; targets: gates of the report's
 // "performance" problem; plots and tables: <results>/data/performance/.
@@ -18,6 +18,7 @@
 #include "benchmarks/perf/memory_per_bond.hpp"
 #include "benchmarks/perf/perf_evidence.hpp"
 #include "benchmarks/perf/perf_output.hpp"
+#include "benchmarks/perf/plastic_cost.hpp"
 #include "solver/pd/kernels/bond_kernels.hpp"
 #include "verification/support/provenance.hpp"
 
@@ -35,14 +36,14 @@ std::string load_average() {
 int main(int argc, char** argv) {
   using namespace pdmpm::perf;
   Options o;
-  std::string parts = "memory,kernels,lammps";
+  std::string parts = "memory,kernels,plastic,lammps";
   CLI::App app{"pdmpm performance driver (issue 6): memory per bond, kernel scaling and roofline, LAMMPS side by side"};
   app.add_option("--refine", o.refine, "problem size: lattice refinement of LAMMPS' example target (3: 1e7 bond sides)")
       ->check(CLI::Range(1, 8));
   app.add_option("--reps", o.reps, "interleaved repetitions of every timing")->check(CLI::Range(1, 100));
   app.add_option("--steps", o.steps, "time steps per LAMMPS-comparison repetition")->check(CLI::Range(1, 100000));
   app.add_option("--kernel-calls", o.kernel_calls, "force evaluations per kernel timing sample")->check(CLI::Range(1, 1000));
-  app.add_option("--parts", parts, "comma-separated subset of memory,kernels,lammps");
+  app.add_option("--parts", parts, "comma-separated subset of memory,kernels,plastic,lammps");
   CLI11_PARSE(app, argc, argv);
   o.results = pdmpm::test::results_dir();
   o.parts.clear();
@@ -50,8 +51,8 @@ int main(int argc, char** argv) {
     b = parts.find(',', a);
     if (b == std::string::npos) b = parts.size();
     const std::string p = parts.substr(a, b - a);
-    if (p != "memory" && p != "kernels" && p != "lammps") {
-      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, lammps)\n", p);
+    if (p != "memory" && p != "kernels" && p != "plastic" && p != "lammps") {
+      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, plastic, lammps)\n", p);
       return 2;
     }
     o.parts.insert(p);
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
       c.kernels = kernel_scaling(o);
       write_result("kernels", c.kernels);
     }
+    if (o.parts.count("plastic")) write_result("plastic", plastic_cost(o));
     if (o.parts.count("lammps")) {
       c.lammps.push_back(lammps_side_by_side("pmb", o));
       c.lammps.push_back(lammps_side_by_side("lps", o));
