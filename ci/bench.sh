@@ -2,10 +2,11 @@
 # One command for the performance numbers of issue 6: install dependencies,
 # configure with benchmarks on, build, run the Google Benchmark suite (JSON to
 # build/results/bench/), run the performance driver (memory per bond, kernel
-# thread scaling and roofline, pdmpm next to LAMMPS; build/results/bench/perf/,
+# thread scaling and roofline, the cost of plasticity, the MPM step against PD by
+# phase, pdmpm next to LAMMPS; build/results/bench/perf/,
 # gates of the "performance" report section), then regenerate the report.
 #
-#   ci/bench.sh                  # the full measurement (about 4 min on 2 cores, plus the build)
+#   ci/bench.sh                  # the full measurement (about 7 min on 2 cores, plus the build)
 #   QUICK=1 ci/bench.sh          # a short check that everything runs (small problem, few repetitions)
 #   PERF_ARGS="--reps 9" ci/bench.sh   # extra options for build/benchmarks/pdmpm_perf (see --help)
 #

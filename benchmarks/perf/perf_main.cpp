@@ -1,6 +1,7 @@
 // pdmpm_perf: the performance driver of issue 6, in one process run —
 //   memory per bond (memory_per_bond.hpp), the force kernels' thread scaling and
-//   roofline (kernel_scaling.hpp), the cost of plasticity (plastic_cost.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
+//   roofline (kernel_scaling.hpp), the cost of plasticity (plastic_cost.hpp),
+//   the MPM step against PD (mpm_step.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
 //   (lammps_side_by_side.hpp).
 // Raw results: <results>/bench/perf/*.json; targets: gates of the report's
 // "performance" problem; plots and tables: <results>/data/performance/.
@@ -18,6 +19,7 @@
 #include "benchmarks/perf/memory_per_bond.hpp"
 #include "benchmarks/perf/perf_evidence.hpp"
 #include "benchmarks/perf/perf_output.hpp"
+#include "benchmarks/perf/mpm_step.hpp"
 #include "benchmarks/perf/plastic_cost.hpp"
 #include "solver/pd/kernels/bond_kernels.hpp"
 #include "verification/support/provenance.hpp"
@@ -36,13 +38,14 @@ std::string load_average() {
 int main(int argc, char** argv) {
   using namespace pdmpm::perf;
   Options o;
-  std::string parts = "memory,kernels,plastic,lammps";
+  std::string parts = "memory,kernels,plastic,mpm,lammps";
   CLI::App app{"pdmpm performance driver (issue 6): memory per bond, kernel scaling and roofline, LAMMPS side by side"};
   app.add_option("--refine", o.refine, "problem size: lattice refinement of LAMMPS' example target (3: 1e7 bond sides)")
       ->check(CLI::Range(1, 8));
   app.add_option("--reps", o.reps, "interleaved repetitions of every timing")->check(CLI::Range(1, 100));
   app.add_option("--steps", o.steps, "time steps per LAMMPS-comparison repetition")->check(CLI::Range(1, 100000));
-  app.add_option("--kernel-calls", o.kernel_calls, "force evaluations per kernel timing sample")->check(CLI::Range(1, 1000));
+  app.add_option("--kernel-calls", o.kernel_calls, "force evaluations per kernel timing sample")
+      ->check(CLI::Range(1, 1000));
   app.add_option("--parts", parts, "comma-separated subset of memory,kernels,plastic,lammps");
   CLI11_PARSE(app, argc, argv);
   o.results = pdmpm::test::results_dir();
@@ -51,8 +54,8 @@ int main(int argc, char** argv) {
     b = parts.find(',', a);
     if (b == std::string::npos) b = parts.size();
     const std::string p = parts.substr(a, b - a);
-    if (p != "memory" && p != "kernels" && p != "plastic" && p != "lammps") {
-      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, plastic, lammps)\n", p);
+    if (p != "memory" && p != "kernels" && p != "plastic" && p != "mpm" && p != "lammps") {
+      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, plastic, mpm, lammps)\n", p);
       return 2;
     }
     o.parts.insert(p);
@@ -63,8 +66,8 @@ int main(int argc, char** argv) {
     context["simd"] = pdmpm::pd::kernels::simd_level();
     context["cores"] = omp_get_num_procs();
     context["load_average_start"] = load_average();
-    context["options"] = {{"refine", o.refine}, {"reps", o.reps}, {"steps", o.steps}, {"kernel_calls", o.kernel_calls},
-                          {"parts", parts}};
+    context["options"] = {
+        {"refine", o.refine}, {"reps", o.reps}, {"steps", o.steps}, {"kernel_calls", o.kernel_calls}, {"parts", parts}};
     fmt::print("pdmpm_perf: results in {}/bench/perf (load average {})\n", o.results.string(), load_average());
     Collected c;
     // Memory first, while the process is small and nothing else is allocated.
@@ -78,6 +81,7 @@ int main(int argc, char** argv) {
       write_result("kernels", c.kernels);
     }
     if (o.parts.count("plastic")) write_result("plastic", plastic_cost(o));
+    if (o.parts.count("mpm")) write_result("mpm", mpm_step(o));
     if (o.parts.count("lammps")) {
       c.lammps.push_back(lammps_side_by_side("pmb", o));
       c.lammps.push_back(lammps_side_by_side("lps", o));

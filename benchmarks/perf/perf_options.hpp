@@ -8,11 +8,11 @@
 namespace pdmpm::perf {
 
 struct Options {
-  int refine = 3;            // problem size (perf_problem.hpp): 3 → 10⁷ bond sides
-  int reps = 5;              // interleaved repetitions of every timing
-  std::int64_t steps = 20;   // time steps per LAMMPS-comparison repetition
-  int kernel_calls = 5;      // force evaluations per kernel timing sample
-  std::set<std::string> parts{"memory", "kernels", "plastic", "lammps"};
+  int refine = 3;           // problem size (perf_problem.hpp): 3 → 10⁷ bond sides
+  int reps = 5;             // interleaved repetitions of every timing
+  std::int64_t steps = 20;  // time steps per LAMMPS-comparison repetition
+  int kernel_calls = 5;     // force evaluations per kernel timing sample
+  std::set<std::string> parts{"memory", "kernels", "plastic", "mpm", "lammps"};
   std::filesystem::path results;  // <results>/bench/perf/*.json, gates/, data/performance/
 };
 

@@ -33,8 +33,8 @@ nlohmann::json plastic_cost(const Options& o) {
   auto elastic_sys = bench::lattice_body<3>(n);
   bench::deform(elastic_sys);  // strains ~1e-4
   auto flowing_sys = elastic_sys, elastic_range_sys = elastic_sys;
-  flowing_sys.hardening = core::J2Hardening{1.0, 1e9};             // σ_y = 1 Pa: every particle returns
-  elastic_range_sys.hardening = core::J2Hardening{1e15, 1e9};      // never reached
+  flowing_sys.hardening = core::J2Hardening{1.0, 1e9};         // σ_y = 1 Pa: every particle returns
+  elastic_range_sys.hardening = core::J2Hardening{1e15, 1e9};  // never reached
   pd::Lps<3> lps;
   pd::LpsPlastic<3> flowing, elastic_range;
   lps.initialise(elastic_sys);
@@ -66,11 +66,12 @@ nlohmann::json plastic_cost(const Options& o) {
           .source = "[pdmpm] docs/models/lps_plastic.md (cost)",
           .unit = "×",
           .problem = "performance"});
-  return {{"bond_sides", sides},
-          {"particles", elastic_sys.n_real()},
-          {"seconds_per_evaluation", {{"lps", t_lps}, {"lps_plastic_flowing", t_flow}, {"lps_plastic_elastic", t_range}}},
-          {"ratio_flowing", to_json(flow)},
-          {"ratio_elastic_range", to_json(range)}};
+  return {
+      {"bond_sides", sides},
+      {"particles", elastic_sys.n_real()},
+      {"seconds_per_evaluation", {{"lps", t_lps}, {"lps_plastic_flowing", t_flow}, {"lps_plastic_elastic", t_range}}},
+      {"ratio_flowing", to_json(flow)},
+      {"ratio_elastic_range", to_json(range)}};
 }
 
 }  // namespace pdmpm::perf

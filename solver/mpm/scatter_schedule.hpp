@@ -59,7 +59,11 @@ class ScatterSchedule {
     }
   }
 
-  // fn(particle index) for every particle, scheduled as described above.
+  // The particles in schedule order (block by block); per-step particle data such as
+  // the stencils is stored in this order, so the hot loops read it sequentially.
+  const std::vector<Index>& order() const { return order_; }
+
+  // fn(position in order(), particle index) for every particle, scheduled as described above.
   template <class Fn>
   void for_each(Fn&& fn) const {
     const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin;
@@ -69,7 +73,7 @@ class ScatterSchedule {
 #pragma omp parallel for schedule(dynamic, 1) if (parallel)
       for (Index bi = 0; bi < nblk; ++bi) {
         const Index b = blocks[bi];
-        for (Index k = start_[b]; k < start_[b + 1]; ++k) fn(order_[k]);
+        for (Index k = start_[b]; k < start_[b + 1]; ++k) fn(k, order_[k]);
       }
     }
   }

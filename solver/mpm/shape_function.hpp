@@ -91,28 +91,39 @@ inline Stencil<D> make_stencil(ShapeFunction s, const Vec<D>& x_rel, double h, c
   return st;
 }
 
-// Calls f(offset k (per-axis), weight, gradient) for each of the K^D stencil nodes.
-template <int D, class F>
-inline void for_each_node(const Stencil<D>& st, int K, F&& f) {
-  std::array<int, 3> k{0, 0, 0};
-  while (true) {
-    double w = 1.0;
-    Vec<D> grad;
-    for (int a = 0; a < D; ++a) w *= st.w[a][k[a]];
-    for (int a = 0; a < D; ++a) {
-      double g = st.dw[a][k[a]];
-      for (int b = 0; b < D; ++b)
-        if (b != a) g *= st.w[b][k[b]];
-      grad[a] = g;
-    }
-    f(k, w, grad);
-    int a = 0;
-    for (; a < D; ++a) {
-      if (++k[a] < K) break;
-      k[a] = 0;
-    }
-    if (a == D) return;
+// Calls f(grid index of the node, weight S, gradient ∇S) for each of the K^D stencil
+// nodes, K fixed at compile time, axis 0 fastest. S and each component of ∇S are
+// products of the 1D factors in axis order.
+template <int D, int K, class F>
+inline void for_each_grid_node(const Stencil<D>& st, const IVec<D>& stride, F&& f) {
+  const Index base = st.first.dot(stride);
+  if constexpr (D == 1) {
+    for (int i = 0; i < K; ++i) f(base + i * stride[0], st.w[0][i], Vec<1>(st.dw[0][i]));
+  } else if constexpr (D == 2) {
+    for (int j = 0; j < K; ++j)
+      for (int i = 0; i < K; ++i) {
+        const double w = st.w[0][i] * st.w[1][j];
+        f(base + i * stride[0] + j * stride[1], w, Vec<2>(st.dw[0][i] * st.w[1][j], st.dw[1][j] * st.w[0][i]));
+      }
+  } else {
+    for (int l = 0; l < K; ++l)
+      for (int j = 0; j < K; ++j)
+        for (int i = 0; i < K; ++i) {
+          const double w = st.w[0][i] * st.w[1][j] * st.w[2][l];
+          f(base + i * stride[0] + j * stride[1] + l * stride[2], w,
+            Vec<3>(st.dw[0][i] * st.w[1][j] * st.w[2][l], st.dw[1][j] * st.w[0][i] * st.w[2][l],
+                   st.dw[2][l] * st.w[0][i] * st.w[1][j]));
+        }
   }
+}
+
+// for_each_grid_node with the stencil size chosen at run time (2 or 3 nodes per axis).
+template <int D, class F>
+inline void for_each_grid_node(const Stencil<D>& st, int K, const IVec<D>& stride, F&& f) {
+  if (K == 3)
+    for_each_grid_node<D, 3>(st, stride, f);
+  else
+    for_each_grid_node<D, 2>(st, stride, f);
 }
 
 }  // namespace pdmpm::mpm

@@ -1,6 +1,7 @@
 #include "solver/mpm/simulation.hpp"
 
 #include <fmt/format.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -18,6 +19,19 @@ namespace pdmpm::mpm {
 namespace {
 
 bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == core::ParticleKind::transition; }
+
+// Wall time between successive calls of lap().
+class PhaseClock {
+ public:
+  double lap() {
+    const double now = omp_get_wtime(), elapsed = now - last_;
+    last_ = now;
+    return elapsed;
+  }
+
+ private:
+  double last_ = omp_get_wtime();
+};
 
 double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
 
@@ -79,10 +93,12 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
     std::vector<Index> sel;
     for (Index p = 0; p < particles_.n_real; ++p) {
       bool in = true;
-      for (int a = 0; a < D; ++a) in = in && particles_.x0[p][a] >= tr.min[a] - tol && particles_.x0[p][a] <= tr.max[a] + tol;
+      for (int a = 0; a < D; ++a)
+        in = in && particles_.x0[p][a] >= tr.min[a] - tol && particles_.x0[p][a] <= tr.max[a] + tol;
       if (in) sel.push_back(p);
     }
-    if (sel.empty()) throw InputError(file, key(fmt::format("traction[{}].min", t)), "the traction region contains no particle");
+    if (sel.empty())
+      throw InputError(file, key(fmt::format("traction[{}].min", t)), "the traction region contains no particle");
     traction_particles_.push_back(std::move(sel));
   }
 
@@ -98,7 +114,8 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
   if (settings_.dt > 0.0) {
     const double dts = stable_dt();
     if (settings_.dt > dts)
-      throw InputError(file, key("dt"), fmt::format("{} s exceeds the stable step h / max(c + |v|) = {} s", settings_.dt, dts));
+      throw InputError(file, key("dt"),
+                       fmt::format("{} s exceeds the stable step h / max(c + |v|) = {} s", settings_.dt, dts));
   }
 }
 
@@ -135,9 +152,10 @@ void Simulation<D>::refresh_active() {
     if (is_mpm(particles_.kind[p])) active_.push_back(p);
 }
 
+// Cells of the active particles → the scatter schedule → each particle's stencil,
+// stored in schedule order.
 template <int D>
 void Simulation<D>::compute_stencils() {
-  stencil_.resize(particles_.size());
   const Index na = static_cast<Index>(active_.size());
   std::vector<IVec<D>> cell(active_.size());
   Index bad = std::numeric_limits<Index>::max();
@@ -148,24 +166,34 @@ void Simulation<D>::compute_stencils() {
     const Vec<D> xr = particles_.position(p) - grid_.node0;
     if (!xr.allFinite()) {
       bad = std::min(bad, p);
+      cell[k].setZero();
       continue;
     }
-    const Stencil<D> st = make_stencil<D>(settings_.shape, xr, grid_.h, state_.half_width[p]);
-    bool ok = true;
-    for (int a = 0; a < D; ++a) {
-      ok = ok && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
+    for (int a = 0; a < D; ++a)
       cell[k][a] = std::clamp(static_cast<std::int32_t>(std::floor(xr[a] / grid_.h)), 0, cells[a] - 1);
+  }
+  if (bad == std::numeric_limits<Index>::max()) {
+    schedule_.build(grid_, active_, cell);
+    const std::vector<Index>& order = schedule_.order();
+    stencil_.resize(order.size());
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+    for (Index k = 0; k < na; ++k) {
+      const Index p = order[k];
+      const Stencil<D> st =
+          make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
+      bool ok = true;
+      for (int a = 0; a < D; ++a) ok = ok && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
+      if (!ok) bad = std::min(bad, p);
+      stencil_[k] = st;
     }
-    if (!ok) bad = std::min(bad, p);
-    stencil_[p] = st;
   }
   if (bad != std::numeric_limits<Index>::max()) {
     std::string where;
     const Vec<D> x = particles_.position(bad);
     for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", x[a]);
-    throw RunError(fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
+    throw RunError(
+        fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
   }
-  schedule_.build(grid_, active_, cell);
 }
 
 template <int D>
@@ -176,52 +204,37 @@ Vec<D> Simulation<D>::external_force(Index p, double t) const {
   return f;
 }
 
+// P2G: whatever `what` asks of m_I, p_I and f_I, in one pass over the particles in the
+// schedule's order (each node sums its particles in the same order on any thread count).
 template <int D>
-void Simulation<D>::scatter_mass_momentum(bool with_mass) {
+void Simulation<D>::scatter(Scatter what) {
   const Index N = grid_.size();
 #pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
-    if (with_mass) grid_.mass[i] = 0.0;
-    grid_.momentum[i].setZero();
+    if (what.mass) grid_.mass[i] = 0.0;
+    if (what.momentum) grid_.momentum[i].setZero();
+    if (what.forces) {
+      grid_.force_internal[i].setZero();
+      grid_.force_external[i].setZero();
+    }
   }
   const IVec<D> stride = grid_.stride;
-  schedule_.for_each([&](Index p) {
-    const Stencil<D>& st = stencil_[p];
-    const Index base = st.first.dot(stride);
+  schedule_.for_each([&](Index k, Index p) {
     const double m = state_.mass[p];
     const Vec<D> mv = m * particles_.v[p];
-    for_each_node<D>(st, K_, [&](const std::array<int, 3>& k, double w, const Vec<D>&) {
-      Index node = base;
-      for (int a = 0; a < D; ++a) node += k[a] * stride[a];
-      if (with_mass) grid_.mass[node] += w * m;
-      grid_.momentum[node] += w * mv;
-    });
-  });
-  boundary_.fold(with_mass ? &grid_.mass : nullptr, &grid_.momentum);
-}
-
-template <int D>
-void Simulation<D>::scatter_forces() {
-  const Index N = grid_.size();
-#pragma omp parallel for schedule(static) if (N >= kParallelMin)
-  for (Index i = 0; i < N; ++i) {
-    grid_.force_internal[i].setZero();
-    grid_.force_external[i].setZero();
-  }
-  const IVec<D> stride = grid_.stride;
-  schedule_.for_each([&](Index p) {
-    const Stencil<D>& st = stencil_[p];
-    const Index base = st.first.dot(stride);
     const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
     const Vec<D> fe = ext_force_[p];
-    for_each_node<D>(st, K_, [&](const std::array<int, 3>& k, double w, const Vec<D>& g) {
-      Index node = base;
-      for (int a = 0; a < D; ++a) node += k[a] * stride[a];
-      grid_.force_internal[node] -= Vtau * g;
-      grid_.force_external[node] += w * fe;
+    for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>& g) {
+      if (what.mass) grid_.mass[node] += w * m;
+      if (what.momentum) grid_.momentum[node] += w * mv;
+      if (what.forces) {
+        grid_.force_internal[node] -= Vtau * g;
+        grid_.force_external[node] += w * fe;
+      }
     });
   });
-  boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
+  if (what.momentum) boundary_.fold(what.mass ? &grid_.mass : nullptr, &grid_.momentum);
+  if (what.forces) boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
 }
 
 template <int D>
@@ -254,7 +267,8 @@ void Simulation<D>::update_nonlocal() {
 
 template <int D>
 void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
-  const Index na = static_cast<Index>(active_.size());
+  const std::vector<Index>& order = schedule_.order();  // the stencils' order
+  const Index na = static_cast<Index>(order.size());
   const IVec<D> stride = grid_.stride;
   const core::DuctileFailure& fail = settings_.failure;
   const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
@@ -262,19 +276,13 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   Index bad = std::numeric_limits<Index>::max();
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
-    const Index p = active_[k];
-    const Stencil<D>& st = stencil_[p];
-    const Index base = st.first.dot(stride);
+    const Index p = order[k];
     Mat<D> L = Mat<D>::Zero();
-    for_each_node<D>(st, K_, [&](const std::array<int, 3>& kk, double, const Vec<D>& g) {
-      Index node = base;
-      for (int a = 0; a < D; ++a) node += kk[a] * stride[a];
-      L += vg[node] * g.transpose();
-    });
+    for_each_grid_node<D>(stencil_[k], K_, stride,
+                          [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
     state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
     if (stretch_domains) {
-      for (int a = 0; a < D; ++a)
-        state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
+      for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
     }
     if (state_.failed[p]) continue;  // a failed particle carries no stress
     PointHistory& hist = state_.history[p];
@@ -313,9 +321,10 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
     }
   }
   if (bad != std::numeric_limits<Index>::max())
-    throw RunError(fmt::format("MPM step {}: particle {} inverted (det F ≤ 0); the step {} s may be too large "
-                               "(stable step estimate {} s)",
-                               steps_, bad, dt, stable_dt()));
+    throw RunError(
+        fmt::format("MPM step {}: particle {} inverted (det F ≤ 0); the step {} s may be too large "
+                    "(stable step estimate {} s)",
+                    steps_, bad, dt, stable_dt()));
 }
 
 template <int D>
@@ -359,11 +368,57 @@ void Simulation<D>::step(double dt) {
     return;
   }
   const double t = time_;
+  PhaseClock clock;
+  prepare_step(t);
+  phase_seconds_.prepare += clock.lap();
+
+  // P2G and vⁿ. USL and MUSL scatter the forces of the stress the last step left in the
+  // same pass; USF updates the stress from vⁿ first.
+  const bool usf = settings_.scheme == UpdateScheme::usf;
+  scatter({.mass = true, .momentum = true, .forces = !usf});
+  grid_velocity_from_momentum(grid_.velocity);
+  boundary_.constrain(grid_.velocity, t);
+  boundary_.mirror(grid_.velocity);
+  phase_seconds_.p2g += clock.lap();
+  if (usf) {
+    update_stress(grid_.velocity, dt);
+    phase_seconds_.stress += clock.lap();
+    scatter({.forces = true});
+    phase_seconds_.p2g += clock.lap();
+  }
+
+  update_grid(t, dt);
+  phase_seconds_.grid += clock.lap();
+  grid_to_particles(t, dt);
+  phase_seconds_.g2p += clock.lap();
+
+  if (settings_.scheme == UpdateScheme::musl) {
+    // Remap: the new particle momenta back to the grid, the stress from that velocity.
+    scatter({.momentum = true});
+    grid_velocity_from_momentum(grid_.velocity_new);
+    boundary_.constrain(grid_.velocity_new, t + dt);
+    boundary_.mirror(grid_.velocity_new);
+    phase_seconds_.p2g += clock.lap();
+  }
+  if (!usf) {
+    update_stress(grid_.velocity_new, dt);
+    phase_seconds_.stress += clock.lap();
+  }
+
+  for (Index p : active_)
+    if (failed_this_step_[p]) newly_failed_.push_back(p);
+  time_ += dt;
+  ++steps_;
+}
+
+// The particles' per-step data: stencils and schedule, external forces at tⁿ, the
+// nonlocal hardening variable.
+template <int D>
+void Simulation<D>::prepare_step(double t) {
   sync_particles();
   failed_this_step_.assign(particles_.size(), 0);
   compute_stencils();
-
-  // External forces of this step (time tⁿ).
+  // External forces (time tⁿ).
   ext_force_.assign(particles_.size(), Vec<D>::Zero());
   for (Index p : active_) ext_force_[p] = external_force(p, t);
   for (std::size_t i = 0; i < settings_.tractions.size(); ++i) {
@@ -376,24 +431,21 @@ void Simulation<D>::step(double dt) {
       }
   }
   update_nonlocal();
+}
 
-  // P2G and vⁿ.
-  scatter_mass_momentum(true);
-  grid_velocity_from_momentum(grid_.velocity);
-  boundary_.constrain(grid_.velocity, t);
-  boundary_.mirror(grid_.velocity);
-  if (settings_.scheme == UpdateScheme::usf) update_stress(grid_.velocity, dt);
-  scatter_forces();
-
+template <int D>
+void Simulation<D>::update_grid(double t, double dt) {
   // Grid momentum update with damping, then boundary conditions at tⁿ⁺¹.
   const Index N = grid_.size();
-  std::vector<Vec<D>> damping(static_cast<std::size_t>(N), Vec<D>::Zero());
+  damping_.resize(static_cast<std::size_t>(N));
+  auto& damping = damping_;
   const double cv = settings_.damping_viscous, cl = settings_.damping_local;
 #pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
     const double m = grid_.mass[i];
     if (!(m > 0.0)) {
       grid_.velocity_new[i].setZero();
+      damping[i].setZero();
       continue;
     }
     const Vec<D> v = grid_.velocity[i];
@@ -404,7 +456,8 @@ void Simulation<D>::step(double dt) {
     damping[i] = fd;
     grid_.velocity_new[i] = v + dt * (f + fd) / m;
   }
-  std::vector<Vec<D>> v_free = grid_.velocity_new;
+  velocity_free_ = grid_.velocity_new;
+  const auto& v_free = velocity_free_;
   boundary_.constrain(grid_.velocity_new, t + dt, &grid_.mass, dt, &reactions_);
   boundary_.mirror(grid_.velocity_new);
 
@@ -429,21 +482,21 @@ void Simulation<D>::step(double dt) {
     boundary_work_ += dt * w[1];
     damping_work_ += dt * w[2];
   }
+}
 
-  // G2P: particle velocity (FLIP/PIC blend) and position.
-  const Index na = static_cast<Index>(active_.size());
+template <int D>
+void Simulation<D>::grid_to_particles(double t, double dt) {
+  // G2P: particle velocity (FLIP/PIC blend) and position, in the stencils' order.
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
   const IVec<D> stride = grid_.stride;
   const double flip = settings_.flip;
   bool finite = true;
 #pragma omp parallel for schedule(static) reduction(&& : finite) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
-    const Index p = active_[k];
-    const Stencil<D>& st = stencil_[p];
-    const Index base = st.first.dot(stride);
+    const Index p = order[k];
     Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
-    for_each_node<D>(st, K_, [&](const std::array<int, 3>& kk, double w, const Vec<D>&) {
-      Index node = base;
-      for (int a = 0; a < D; ++a) node += kk[a] * stride[a];
+    for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
       v_pic += w * grid_.velocity_new[node];
       dv += w * (grid_.velocity_new[node] - grid_.velocity[node]);
     });
@@ -453,25 +506,11 @@ void Simulation<D>::step(double dt) {
   }
   if (!finite) {
     const Energies e = energies();
-    throw RunError(fmt::format("MPM step {} (t = {} s): non-finite particle velocity; kinetic energy {} J, strain "
-                               "energy {} J; step {} s vs stable estimate {} s",
-                               steps_, t, e.kinetic, e.strain, dt, stable_dt()));
+    throw RunError(
+        fmt::format("MPM step {} (t = {} s): non-finite particle velocity; kinetic energy {} J, strain "
+                    "energy {} J; step {} s vs stable estimate {} s",
+                    steps_, t, e.kinetic, e.strain, dt, stable_dt()));
   }
-
-  if (settings_.scheme == UpdateScheme::usl) {
-    update_stress(grid_.velocity_new, dt);
-  } else if (settings_.scheme == UpdateScheme::musl) {
-    scatter_mass_momentum(false);
-    grid_velocity_from_momentum(grid_.velocity_new);
-    boundary_.constrain(grid_.velocity_new, t + dt);
-    boundary_.mirror(grid_.velocity_new);
-    update_stress(grid_.velocity_new, dt);
-  }
-
-  for (Index p : active_)
-    if (failed_this_step_[p]) newly_failed_.push_back(p);
-  time_ += dt;
-  ++steps_;
 }
 
 template <int D>

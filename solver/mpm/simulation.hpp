@@ -45,6 +45,16 @@ struct Energies {
   double balance() const { return kinetic + strain + dissipated - external_work - boundary_work - damping_work; }
 };
 
+// Wall time of the phases of an MPM step (seconds), accumulated over steps.
+struct StepPhaseSeconds {
+  double prepare = 0.0;  // stencils and scatter schedule, external forces, nonlocal hardening
+  double p2g = 0.0;      // scatters to the grid (MUSL's remap included), vⁿ and its constraints
+  double grid = 0.0;     // grid momentum update, constraints at tⁿ⁺¹, work booking
+  double g2p = 0.0;      // particle velocities and positions
+  double stress = 0.0;   // velocity gradient, F, constitutive update, failure
+  double total() const { return prepare + p2g + grid + g2p + stress; }
+};
+
 template <int D>
 class Simulation {
  public:
@@ -79,6 +89,9 @@ class Simulation {
   // thickness / cross-section), in the order of settings.boundaries.
   const std::vector<Vec<D>>& reactions() const { return reactions_; }
 
+  // Wall time spent in each phase of step() since construction (seconds, this process).
+  const StepPhaseSeconds& phase_seconds() const { return phase_seconds_; }
+
   // Per-particle outputs.
   double von_mises(Index p) const;
   double triaxiality(Index p) const;
@@ -95,11 +108,16 @@ class Simulation {
   void sync_particles();
 
  private:
+  void prepare_step(double t);
+  void update_grid(double t, double dt);
+  void grid_to_particles(double t, double dt);
   void initialise_particle(Index p);
   void refresh_active();
   void compute_stencils();
-  void scatter_mass_momentum(bool with_mass);
-  void scatter_forces();
+  struct Scatter {
+    bool mass = false, momentum = false, forces = false;
+  };
+  void scatter(Scatter what);
   void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_nonlocal();
@@ -113,13 +131,15 @@ class Simulation {
   ParticleState<D> state_;
   ScatterSchedule<D> schedule_;
   std::vector<Index> active_;
-  std::vector<Stencil<D>> stencil_;     // per particle, valid for active ones this step
-  std::vector<Vec<D>> ext_force_;       // per particle external force this step (N)
+  std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
+  std::vector<Vec<D>> ext_force_;    // per particle external force this step (N)
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;
+  std::vector<Vec<D>> damping_, velocity_free_;  // per node this step: damping force, v before constraints
+  StepPhaseSeconds phase_seconds_;
   std::vector<std::uint8_t> failed_this_step_;
-  int K_ = 3;                           // nodes per axis of the shape function
+  int K_ = 3;  // nodes per axis of the shape function
   double time_ = 0.0;
   std::int64_t steps_ = 0;
   double external_work_ = 0.0, boundary_work_ = 0.0, damping_work_ = 0.0;

@@ -37,7 +37,8 @@ const core::J2Hardening kHardening{340e6, 1.45e9};
 const double kYieldStrain = kHardening.yield_stress / kSteel.E;
 
 double bilinear(double eps) {
-  return eps <= kYieldStrain ? kSteel.E * eps : kHardening.yield_stress + kHardening.tangent_modulus * (eps - kYieldStrain);
+  return eps <= kYieldStrain ? kSteel.E * eps
+                             : kHardening.yield_stress + kHardening.tangent_modulus * (eps - kYieldStrain);
 }
 
 std::vector<double> scaled(const std::vector<double>& v, double f) {
@@ -87,30 +88,45 @@ TEST(FastLpsPlastic, UniaxialStressFollowsTheBilinearJ2Curve) {
   const Mat<3> skew = Eigen::AngleAxisd(0.7, Vec<3>(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
   json plot = json::array();
   for (const bool axis : {true, false}) {
-    const auto c = uniaxial_curve<3>({.material = kSteel, .hardening = kHardening}, axis ? Mat<3>(Mat<3>::Identity()) : skew, 40);
+    const auto c =
+        uniaxial_curve<3>({.material = kSteel, .hardening = kHardening}, axis ? Mat<3>(Mat<3>::Identity()) : skew, 40);
     const std::string dir = axis ? "axis" : "skew";
     const std::string where = axis ? "along a lattice axis" : "along a skew axis (0.7 rad about (1, 2, 3))";
-    test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".stress",
-                       .claim = "Under homogeneous uniaxial stress " + where + " to ε = 10 σ_y/E, the interior particle's "
-                                "axial stress shall follow the bilinear J2 curve (measured: max |σ − σ_J2| / σ_y)",
-                       .measured = c.worst_stress, .expected = 0.01, .compare = test::Compare::at_most,
-                       .tolerance_reason = kGeometricReason,
-                       .source = "[pdmpm] docs/models/lps_plastic.md (derivation); [simo-hughes1998] (J2, linear isotropic hardening)",
-                       .unit = "", .problem = kProblem});
+    test::record_gate(
+        {.id = "lps_plastic.uniaxial." + dir + ".stress",
+         .claim = "Under homogeneous uniaxial stress " + where +
+             " to ε = 10 σ_y/E, the interior particle's "
+             "axial stress shall follow the bilinear J2 curve (measured: max |σ − σ_J2| / σ_y)",
+         .measured = c.worst_stress,
+         .expected = 0.01,
+         .compare = test::Compare::at_most,
+         .tolerance_reason = kGeometricReason,
+         .source =
+             "[pdmpm] docs/models/lps_plastic.md (derivation); [simo-hughes1998] (J2, linear isotropic hardening)",
+         .unit = "",
+         .problem = kProblem});
     test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".lateral",
                        .claim = "On the same path the lateral strain shall be −νσ/E − ε_p/2 (isochoric flow) "
                                 "(measured: max |ε_lat − (−νσ/E − ε_p/2)| / ε)",
-                       .measured = c.worst_lateral, .expected = 0.01, .compare = test::Compare::at_most,
+                       .measured = c.worst_lateral,
+                       .expected = 0.01,
+                       .compare = test::Compare::at_most,
                        .tolerance_reason = "1 % of the axial strain, the precision of the stress claim; the same O(ε) "
                                            "geometric nonlinearity is the only difference expected.",
-                       .source = "[simo-hughes1998] (J2 flow is deviatoric)", .unit = "", .problem = kProblem});
+                       .source = "[simo-hughes1998] (J2 flow is deviatoric)",
+                       .unit = "",
+                       .problem = kProblem});
     test::record_gate({.id = "lps_plastic.uniaxial." + dir + ".eq_plastic_strain",
                        .claim = "At ε = 10 σ_y/E the model's equivalent plastic strain shall equal the J2 value "
                                 "ε − σ_J2/E (measured: ratio)",
                        .measured = c.eq_plastic_end / (10.0 * kYieldStrain - bilinear(10.0 * kYieldStrain) / kSteel.E),
-                       .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                       .expected = 1.0,
+                       .tolerance = 0.01,
+                       .compare = test::Compare::rel,
                        .tolerance_reason = "1 %, as the stress: ε̄_p is work-conjugate to σ̄ by construction.",
-                       .source = "[pdmpm] docs/models/lps_plastic.md", .unit = "", .problem = kProblem});
+                       .source = "[pdmpm] docs/models/lps_plastic.md",
+                       .unit = "",
+                       .problem = kProblem});
     if (axis) plot.push_back(mu::series("J2 bilinear (analytic)", c.strain, scaled(c.exact, 1e-6)));
     plot.push_back(mu::series(std::string("lps_plastic, ") + (axis ? "[100]" : "skew axis"), c.strain,
                               scaled(c.stress, 1e-6), axis ? "points" : "dashed"));
@@ -123,8 +139,9 @@ TEST(FastLpsPlastic, UniaxialStressFollowsTheBilinearJ2Curve) {
                      {"xscale", "linear"},
                      {"yscale", "linear"},
                      {"series", plot},
-                     {"caption", "E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa; δ = 3.015Δx, ω = 1, isotropy "
-                                 "corrected; the lateral strain is solved so that σ_yy = σ_zz = 0 at the particle."}});
+                     {"caption",
+                      "E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa; δ = 3.015Δx, ω = 1, isotropy "
+                      "corrected; the lateral strain is solved so that σ_yy = σ_zz = 0 at the particle."}});
 }
 
 // Load to 6 ε_y, unload to zero stress, reload to 8 ε_y.
@@ -165,28 +182,50 @@ TEST(FastLpsPlastic, LoadUnloadReload) {
   }
   test::record_gate({.id = "lps_plastic.cycle.unloading_slope",
                      .claim = "Unloading from 6 ε_y shall be elastic with slope E (measured: slope / E)",
-                     .measured = slope, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
-                     .tolerance_reason = "The issue's 1 %; the isotropy-corrected lattice has E exactly for an interior "
-                                         "particle, up to the O(ε) geometric nonlinearity.",
-                     .source = "[simo-hughes1998] (elastic unloading)", .unit = "", .problem = kProblem});
-  test::record_gate({.id = "lps_plastic.cycle.residual_strain",
-                     .claim = "The strain left at zero stress after unloading from 6 ε_y shall be the J2 plastic strain "
-                              "ε_peak − σ_J2(ε_peak)/E (measured: ratio)",
-                     .measured = residual / residual_j2, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
-                     .tolerance_reason = "1 % of the plastic strain: the stress error at the peak (≲ 1 % σ_y) over E is "
-                                         "≲ 1e-2 ε_y, below 1 % of the 4.9 ε_y residual.",
-                     .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
+                     .measured = slope,
+                     .expected = 1.0,
+                     .tolerance = 0.01,
+                     .compare = test::Compare::rel,
+                     .tolerance_reason =
+                         "The issue's 1 %; the isotropy-corrected lattice has E exactly for an interior "
+                         "particle, up to the O(ε) geometric nonlinearity.",
+                     .source = "[simo-hughes1998] (elastic unloading)",
+                     .unit = "",
+                     .problem = kProblem});
+  test::record_gate(
+      {.id = "lps_plastic.cycle.residual_strain",
+       .claim = "The strain left at zero stress after unloading from 6 ε_y shall be the J2 plastic strain "
+                "ε_peak − σ_J2(ε_peak)/E (measured: ratio)",
+       .measured = residual / residual_j2,
+       .expected = 1.0,
+       .tolerance = 0.01,
+       .compare = test::Compare::rel,
+       .tolerance_reason = "1 % of the plastic strain: the stress error at the peak (≲ 1 % σ_y) over E is "
+                           "≲ 1e-2 ε_y, below 1 % of the 4.9 ε_y residual.",
+       .source = "[simo-hughes1998]",
+       .unit = "",
+       .problem = kProblem});
   test::record_gate({.id = "lps_plastic.cycle.elastic_reload",
                      .claim = "Unloading and reloading to 0.999 × the previous peak strain shall not change the "
                               "equivalent plastic strain (measured: 1 if it did not)",
-                     .measured = no_flow_unloading && no_flow_reload ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0,
-                     .compare = test::Compare::abs, .tolerance_reason = "A yes/no property (bitwise: no return at all).",
-                     .source = "[simo-hughes1998] (isotropic hardening)", .unit = "", .problem = kProblem});
+                     .measured = no_flow_unloading && no_flow_reload ? 1.0 : 0.0,
+                     .expected = 1.0,
+                     .tolerance = 0.0,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = "A yes/no property (bitwise: no return at all).",
+                     .source = "[simo-hughes1998] (isotropic hardening)",
+                     .unit = "",
+                     .problem = kProblem});
   test::record_gate({.id = "lps_plastic.cycle.reload_curve",
                      .claim = "Reloaded beyond the previous peak (to 8 ε_y) the stress shall rejoin the bilinear curve "
                               "(measured: max |σ − σ_J2| / σ_y)",
-                     .measured = worst_beyond, .expected = 0.01, .compare = test::Compare::at_most,
-                     .tolerance_reason = kGeometricReason, .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
+                     .measured = worst_beyond,
+                     .expected = 0.01,
+                     .compare = test::Compare::at_most,
+                     .tolerance_reason = kGeometricReason,
+                     .source = "[simo-hughes1998]",
+                     .unit = "",
+                     .problem = kProblem});
   test::record_data(kProblem, "02_cycle",
                     {{"kind", "plot"},
                      {"title", "Load – unload – reload (interior particle, uniaxial stress)"},
@@ -195,8 +234,9 @@ TEST(FastLpsPlastic, LoadUnloadReload) {
                      {"xscale", "linear"},
                      {"yscale", "linear"},
                      {"series", {mu::series("lps_plastic", xs, ys, "points")}},
-                     {"caption", "Loaded to 6 ε_y, unloaded to σ = 0 (residual strain " + std::to_string(residual) +
-                                     ", J2: " + std::to_string(residual_j2) + "), reloaded to 8 ε_y."}});
+                     {"caption",
+                      "Loaded to 6 ε_y, unloaded to σ = 0 (residual strain " + std::to_string(residual) +
+                          ", J2: " + std::to_string(residual_j2) + "), reloaded to 8 ε_y."}});
 }
 
 TEST(FastLpsPlastic, PureShearYieldsAtSigmaYOverRootThree) {
@@ -207,17 +247,24 @@ TEST(FastLpsPlastic, PureShearYieldsAtSigmaYOverRootThree) {
   for (int it = 0; it < 40; ++it) {
     const double mid = 0.5 * (lo + hi);
     const double tau = b.shear(mid);
-    if (b.eq_plastic_strain() > 0.0) hi = mid;
-    else lo = mid, tau_at_yield = tau;
+    if (b.eq_plastic_strain() > 0.0)
+      hi = mid;
+    else
+      lo = mid, tau_at_yield = tau;
     b.model.reject();
   }
   test::record_gate({.id = "lps_plastic.shear.yield",
                      .claim = "Under homogeneous simple shear the interior particle shall first yield at τ = σ_y/√3 "
                               "(measured: τ at first yield / (σ_y/√3))",
-                     .measured = tau_at_yield / tau_y, .expected = 1.0, .tolerance = 0.01, .compare = test::Compare::rel,
+                     .measured = tau_at_yield / tau_y,
+                     .expected = 1.0,
+                     .tolerance = 0.01,
+                     .compare = test::Compare::rel,
                      .tolerance_reason = "The issue's 1 %; the bisection resolves γ to 1e-12 γ_y, and at γ_y = 2.4e-3 "
                                          "the geometric nonlinearity is O(γ) of τ.",
-                     .source = "[simo-hughes1998] (von Mises: τ_y = σ_y/√3)", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] (von Mises: τ_y = σ_y/√3)",
+                     .unit = "",
+                     .problem = kProblem});
 }
 
 // Isochoric flow: θ stays the elastic volume change, tr σ = 3Kθ.
@@ -233,12 +280,16 @@ TEST(FastLpsPlastic, PlasticFlowIsIsochoric) {
   test::record_gate({.id = "lps_plastic.isochoric",
                      .claim = "Along the uniaxial path to 10 ε_y the mean stress shall stay K θ: the dilatation is the "
                               "elastic volume change and plastic flow adds none (measured: max |tr σ − 3Kθ| / σ_y)",
-                     .measured = worst, .expected = 1e-3, .compare = test::Compare::at_most,
+                     .measured = worst,
+                     .expected = 1e-3,
+                     .compare = test::Compare::at_most,
                      .tolerance_reason = "The second bond moments of the lattice are isotropic, so a traceless plastic "
                                          "extension adds nothing to θ exactly; what remains is the difference between "
                                          "the bond kinematics of σ (deformed direction) and of θ (extension), O(ε²) "
                                          "relative at ε = 1.6 %.",
-                     .source = "[pdmpm] docs/models/lps_plastic.md (isochoric flow)", .unit = "", .problem = kProblem});
+                     .source = "[pdmpm] docs/models/lps_plastic.md (isochoric flow)",
+                     .unit = "",
+                     .problem = kProblem});
 }
 
 // Below yield the plastic model is elastic LPS (same sums, another order).
@@ -263,14 +314,18 @@ TEST(FastLpsPlastic, BelowYieldItIsElasticLps) {
   const double worst = std::max({below_yield_difference<3>(core::Setting::solid3d),
                                  below_yield_difference<2>(core::Setting::plane_stress),
                                  below_yield_difference<2>(core::Setting::plane_strain)});
-  test::record_gate({.id = "lps_plastic.below_yield",
-                     .claim = "Below yield (a non-uniform field, strains ≤ 1e-4) the plastic model's forces shall equal "
-                              "elastic LPS's (isotropy correction off) in 3D, plane stress and plane strain "
-                              "(measured: max |f − f_LPS| / max |f_LPS|, worst setting)",
-                     .measured = worst, .expected = 1e-12, .compare = test::Compare::at_most,
-                     .tolerance_reason = "Round-off: the same sums in another order (the LPS kernel sums in SIMD lanes).",
-                     .source = "[pdmpm] docs/models/lps_plastic.md (with p = 0 the force state is LPS's)", .unit = "",
-                     .problem = kProblem});
+  test::record_gate(
+      {.id = "lps_plastic.below_yield",
+       .claim = "Below yield (a non-uniform field, strains ≤ 1e-4) the plastic model's forces shall equal "
+                "elastic LPS's (isotropy correction off) in 3D, plane stress and plane strain "
+                "(measured: max |f − f_LPS| / max |f_LPS|, worst setting)",
+       .measured = worst,
+       .expected = 1e-12,
+       .compare = test::Compare::at_most,
+       .tolerance_reason = "Round-off: the same sums in another order (the LPS kernel sums in SIMD lanes).",
+       .source = "[pdmpm] docs/models/lps_plastic.md (with p = 0 the force state is LPS's)",
+       .unit = "",
+       .problem = kProblem});
 }
 
 // The response of a homogeneous state does not depend on the horizon ratio.
@@ -291,10 +346,15 @@ TEST(FastLpsPlastic, HomogeneousResponseIndependentOfHorizonRatio) {
   test::record_gate({.id = "lps_plastic.horizon_independence",
                      .claim = "The axial stress at 5 ε_y on the uniaxial path shall not depend on the horizon ratio "
                               "m = 2.015, 3.015, 4.015 (measured: (max − min) / σ_y)",
-                     .measured = (*hi - *lo) / kHardening.yield_stress, .expected = 0.01, .compare = test::Compare::at_most,
-                     .tolerance_reason = "The issue's 1 %: with the isotropy correction every interior particle answers "
-                                         "a homogeneous state with the continuum moments, whatever m.",
-                     .source = "[pdmpm] docs/models/lps_plastic.md (isotropy correction)", .unit = "", .problem = kProblem});
+                     .measured = (*hi - *lo) / kHardening.yield_stress,
+                     .expected = 0.01,
+                     .compare = test::Compare::at_most,
+                     .tolerance_reason =
+                         "The issue's 1 %: with the isotropy correction every interior particle answers "
+                         "a homogeneous state with the continuum moments, whatever m.",
+                     .source = "[pdmpm] docs/models/lps_plastic.md (isotropy correction)",
+                     .unit = "",
+                     .problem = kProblem});
   test::record_data(kProblem, "03_horizon",
                     {{"kind", "table"},
                      {"title", "Uniaxial stress at ε = 5 σ_y/E vs horizon ratio"},
@@ -313,17 +373,22 @@ TEST(FastLpsPlastic, PlaneStressUniaxialFollowsTheBilinearJ2Curve) {
   json plot = json::array();
   const Mat<2> skew = Eigen::Rotation2Dd(0.45).toRotationMatrix();
   for (const bool axis : {true, false}) {
-    const auto c = uniaxial_curve<2>({.material = kSteel, .hardening = kHardening, .setting = core::Setting::plane_stress},
-                                     axis ? Mat<2>(Mat<2>::Identity()) : skew, 40);
+    const auto c =
+        uniaxial_curve<2>({.material = kSteel, .hardening = kHardening, .setting = core::Setting::plane_stress},
+                          axis ? Mat<2>(Mat<2>::Identity()) : skew, 40);
     const std::string dir = axis ? "axis" : "skew";
     test::record_gate({.id = "lps_plastic.plane_stress.uniaxial." + dir,
-                       .claim = std::string("In plane stress, uniaxial stress ") + (axis ? "along a lattice axis" : "at 0.45 rad to it") +
-                                " to ε = 10 σ_y/E shall follow the bilinear J2 curve; σ_zz = 0 holds through the model's "
-                                "own out-of-plane strain (measured: max |σ − σ_J2| / σ_y)",
-                       .measured = c.worst_stress, .expected = 0.01, .compare = test::Compare::at_most,
+                       .claim = std::string("In plane stress, uniaxial stress ") +
+                           (axis ? "along a lattice axis" : "at 0.45 rad to it") +
+                           " to ε = 10 σ_y/E shall follow the bilinear J2 curve; σ_zz = 0 holds through the model's "
+                           "own out-of-plane strain (measured: max |σ − σ_J2| / σ_y)",
+                       .measured = c.worst_stress,
+                       .expected = 0.01,
+                       .compare = test::Compare::at_most,
                        .tolerance_reason = kGeometricReason,
                        .source = "[pdmpm] docs/models/lps_plastic.md (2D); [simo-hughes1998] (J2 in plane stress)",
-                       .unit = "", .problem = kProblem});
+                       .unit = "",
+                       .problem = kProblem});
     if (axis) plot.push_back(mu::series("J2 bilinear (analytic)", c.strain, scaled(c.exact, 1e-6)));
     plot.push_back(mu::series(std::string("plane stress, ") + (axis ? "[10]" : "0.45 rad"), c.strain,
                               scaled(c.stress, 1e-6), axis ? "points" : "dashed"));
@@ -336,8 +401,9 @@ TEST(FastLpsPlastic, PlaneStressUniaxialFollowsTheBilinearJ2Curve) {
                      {"xscale", "linear"},
                      {"yscale", "linear"},
                      {"series", plot},
-                     {"caption", "Same steel and horizon as the 3D curve; the in-plane lateral strain is solved for σ_yy = 0, "
-                                 "σ_zz = 0 by the model's own ε_zz."}});
+                     {"caption",
+                      "Same steel and horizon as the 3D curve; the in-plane lateral strain is solved for σ_yy = 0, "
+                      "σ_zz = 0 by the model's own ε_zz."}});
 }
 
 // A general in-plane path — stretch with shear to 10 ε_y, unloading to 6 ε_y — against an
@@ -363,7 +429,7 @@ PlanarPathResult planar_path(core::Setting s, const core::J2Hardening& hardening
     Mat<3> e3 = Mat<3>::Zero();
     e3.topLeftCorner<2, 2>() = e;
     const auto ref = s == core::Setting::plane_stress ? mpm::j2_return_plane_stress(kSteel, hardening, e3, h, 0.0)
-                                                       : mpm::j2_return_3d(kSteel, hardening, e3, h, 0.0);
+                                                      : mpm::j2_return_3d(kSteel, hardening, e3, h, 0.0);
     const double szz = b.model.out_of_plane_stress(b.centre);
     r.stress = std::max({r.stress, (sigma - ref.T.topLeftCorner<2, 2>()).cwiseAbs().maxCoeff() / sigma_n,
                          std::abs(szz - ref.T(2, 2)) / sigma_n});
@@ -385,41 +451,56 @@ TEST(FastLpsPlastic, PlanarPathsMatchAnIndependentJ2Return) {
   for (core::Setting s : {core::Setting::plane_stress, core::Setting::plane_strain}) {
     const auto r = planar_path(s, small_strain, small_strain.yield_stress);
     const std::string setting(name(s));
-    test::record_gate({.id = "lps_plastic." + setting + ".general_path",
-                       .claim = "In " + setting + ", the path ε = λ ε_y [[1, 0.3], [0.3, −0.2]] with λ to 10 and back to 6 "
-                                "(σ_y = 1e-5 E) shall give the J2 stress of an independent return map on the same strain, "
-                                "σ_zz included (measured: max |σ_PD − σ_J2| / σ_y over components and steps)",
-                       .measured = r.stress, .expected = 0.01, .compare = test::Compare::at_most,
-                       .tolerance_reason = kPlanarReason,
-                       .source = "[pdmpm] docs/models/lps_plastic.md (2D); [simo-hughes1998] (§3.4 plane-stress return)",
-                       .unit = "", .problem = kProblem});
-    test::record_gate({.id = "lps_plastic." + setting + ".general_path_plastic_strain",
-                       .claim = "On the same path the model's ε̄_p shall equal the J2 one (measured: max |ε̄_p − ε̄_p,J2| / ε_y)",
-                       .measured = r.plastic_strain, .expected = 0.01, .compare = test::Compare::at_most,
-                       .tolerance_reason = kPlanarReason, .source = "[simo-hughes1998]", .unit = "", .problem = kProblem});
+    test::record_gate(
+        {.id = "lps_plastic." + setting + ".general_path",
+         .claim = "In " + setting +
+             ", the path ε = λ ε_y [[1, 0.3], [0.3, −0.2]] with λ to 10 and back to 6 "
+             "(σ_y = 1e-5 E) shall give the J2 stress of an independent return map on the same strain, "
+             "σ_zz included (measured: max |σ_PD − σ_J2| / σ_y over components and steps)",
+         .measured = r.stress,
+         .expected = 0.01,
+         .compare = test::Compare::at_most,
+         .tolerance_reason = kPlanarReason,
+         .source = "[pdmpm] docs/models/lps_plastic.md (2D); [simo-hughes1998] (§3.4 plane-stress return)",
+         .unit = "",
+         .problem = kProblem});
+    test::record_gate(
+        {.id = "lps_plastic." + setting + ".general_path_plastic_strain",
+         .claim = "On the same path the model's ε̄_p shall equal the J2 one (measured: max |ε̄_p − ε̄_p,J2| / ε_y)",
+         .measured = r.plastic_strain,
+         .expected = 0.01,
+         .compare = test::Compare::at_most,
+         .tolerance_reason = kPlanarReason,
+         .source = "[simo-hughes1998]",
+         .unit = "",
+         .problem = kProblem});
     const auto steel = planar_path(s, kHardening, kHardening.yield_stress);
     // The elastic deviation on the steel's strains: the same path with a yield stress never reached.
     const auto geometric = planar_path(s, elastic, kHardening.yield_stress);
     rows.push_back({setting, r.stress, steel.stress, geometric.stress, steel.plastic_strain});
-    test::record_data(kProblem, "05_" + setting + "_path",
-                      {{"kind", "plot"},
-                       {"title", "Von Mises stress on a general " + setting + " path (σ_y = 1e-5 E): PD vs an independent J2 return"},
-                       {"xlabel", "load step (to 10 ε_y at 30, unloading to 6 ε_y at 40)"},
-                       {"ylabel", "σ_eq / σ_y"},
-                       {"xscale", "linear"},
-                       {"yscale", "linear"},
-                       {"series", {mu::series("J2 return (MPM's)", r.step, r.ref_vm), mu::series("lps_plastic", r.step, r.pd_vm, "points")}}});
+    test::record_data(
+        kProblem, "05_" + setting + "_path",
+        {{"kind", "plot"},
+         {"title", "Von Mises stress on a general " + setting + " path (σ_y = 1e-5 E): PD vs an independent J2 return"},
+         {"xlabel", "load step (to 10 ε_y at 30, unloading to 6 ε_y at 40)"},
+         {"ylabel", "σ_eq / σ_y"},
+         {"xscale", "linear"},
+         {"yscale", "linear"},
+         {"series",
+          {mu::series("J2 return (MPM's)", r.step, r.ref_vm), mu::series("lps_plastic", r.step, r.pd_vm, "points")}}});
   }
   test::record_data(kProblem, "06_planar_scale",
                     {{"kind", "table"},
                      {"title", "General planar path: the return at small strain, and the steel's strains"},
-                     {"columns", {"setting", "max |Δσ|/σ_y, σ_y = 1e-5 E", "max |Δσ|/σ_y, steel (ε to 1.6 %)",
-                                  "elastic only, steel strains, / σ_y", "max |Δε̄_p|/ε_y, steel"}},
+                     {"columns",
+                      {"setting", "max |Δσ|/σ_y, σ_y = 1e-5 E", "max |Δσ|/σ_y, steel (ε to 1.6 %)",
+                       "elastic only, steel strains, / σ_y", "max |Δε̄_p|/ε_y, steel"}},
                      {"rows", rows},
-                     {"caption", "At the steel's strains the path's mean stress reaches GPa in plane strain; the bond "
-                                 "kinematics (stretch |y| − |ξ|, deformed direction) are geometrically exact, so PD and "
-                                 "the small-strain reference differ at O(ε²K) — the elastic column measures that part "
-                                 "alone, with no yield surface in the way."}});
+                     {"caption",
+                      "At the steel's strains the path's mean stress reaches GPa in plane strain; the bond "
+                      "kinematics (stretch |y| − |ξ|, deformed direction) are geometrically exact, so PD and "
+                      "the small-strain reference differ at O(ε²K) — the elastic column measures that part "
+                      "alone, with no yield surface in the way."}});
 }
 
 // Equibiaxial plane stress: no in-plane deviator, yet J2 yields at σ = σ_y.
@@ -430,17 +511,24 @@ TEST(FastLpsPlastic, EquibiaxialPlaneStressYields) {
   for (int it = 0; it < 40; ++it) {  // bisection on the first yield; trial states only
     const double mid = 0.5 * (lo + hi);
     const double sigma = b.stress_under(mid * Mat<2>::Identity())(0, 0);
-    if (b.eq_plastic_strain() > 0.0) hi = mid;
-    else lo = mid, sigma_at_yield = sigma;
+    if (b.eq_plastic_strain() > 0.0)
+      hi = mid;
+    else
+      lo = mid, sigma_at_yield = sigma;
     b.model.reject();
   }
   test::record_gate({.id = "lps_plastic.plane_stress.equibiaxial_yield",
-                     .claim = "Equibiaxial plane stress (no in-plane deviator: a return on the bonds alone never yields) "
-                              "shall first yield at σ = σ_y (measured: σ at first yield / σ_y)",
-                     .measured = sigma_at_yield / kHardening.yield_stress, .expected = 1.0, .tolerance = 0.01,
+                     .claim =
+                         "Equibiaxial plane stress (no in-plane deviator: a return on the bonds alone never yields) "
+                         "shall first yield at σ = σ_y (measured: σ at first yield / σ_y)",
+                     .measured = sigma_at_yield / kHardening.yield_stress,
+                     .expected = 1.0,
+                     .tolerance = 0.01,
                      .compare = test::Compare::rel,
                      .tolerance_reason = "The issue's 1 %; bisection to 1e-12 ε_y, the geometric O(ε) remains.",
-                     .source = "[simo-hughes1998] (von Mises: σ_eq = σ under equibiaxial stress)", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] (von Mises: σ_eq = σ under equibiaxial stress)",
+                     .unit = "",
+                     .problem = kProblem});
 }
 
 // Ductile failure (Noorian et al. eqs 8–9, the form of Hooputra et al.): the interior particle of
@@ -449,7 +537,8 @@ TEST(FastLpsPlastic, EquibiaxialPlaneStressYields) {
 TEST(FastLpsPlastic, DuctileFailureOnset) {
   const double d0 = 0.02, c = -1.5;
   auto block = [&] {
-    test::PlasticBlock<3> b({.material = kSteel, .hardening = kHardening, .failure = {true, d0, c, core::FailureRule::strain}});
+    test::PlasticBlock<3> b(
+        {.material = kSteel, .hardening = kHardening, .failure = {true, d0, c, core::FailureRule::strain}});
     b.request.break_bonds = true;
     b.request.critical_stretch = std::numeric_limits<double>::infinity();  // the ductile rule alone
     return b;
@@ -470,15 +559,20 @@ TEST(FastLpsPlastic, DuctileFailureOnset) {
     mismatches += r.mismatches, failures += r.failures;
   }
   ASSERT_GT(failures, 0) << "particles must fail for this claim";
-  test::record_gate({.id = "lps_plastic.ductile_failure.rule",
-                     .claim = "Along tension and shear paths to 30 ε_y, every particle shall fail in "
-                              "exactly the step where ε̄_p ≥ d₀ exp(cη) for its own state, lose every bond on both sides, "
-                              "and no other bond shall break (" + std::to_string(failures) +
-                              " particle failures; measured: particles whose fate differs from the rule)",
-                     .measured = static_cast<double>(mismatches), .expected = 0.0, .tolerance = 0.0,
-                     .compare = test::Compare::abs, .tolerance_reason = "A count: any difference is a defect.",
-                     .source = "[noorian] eqs 8–9; [pdmpm] docs/models/lps_plastic.md (ductile failure)", .unit = "",
-                     .problem = kProblem});
+  test::record_gate(
+      {.id = "lps_plastic.ductile_failure.rule",
+       .claim = "Along tension and shear paths to 30 ε_y, every particle shall fail in "
+                "exactly the step where ε̄_p ≥ d₀ exp(cη) for its own state, lose every bond on both sides, "
+                "and no other bond shall break (" +
+           std::to_string(failures) + " particle failures; measured: particles whose fate differs from the rule)",
+       .measured = static_cast<double>(mismatches),
+       .expected = 0.0,
+       .tolerance = 0.0,
+       .compare = test::Compare::abs,
+       .tolerance_reason = "A count: any difference is a defect.",
+       .source = "[noorian] eqs 8–9; [pdmpm] docs/models/lps_plastic.md (ductile failure)",
+       .unit = "",
+       .problem = kProblem});
   // With c < 0 the fracture strain falls with triaxiality: shear fails at d₀, tension at d₀ exp(c/3).
   // At the steel's strains simple shear is not at η = 0 for PD (the exact bond kinematics give it a
   // second-order mean stress, K γ²/4 ≈ 70 MPa at γ = 3.6 %), so the criterion's dependence on η is
@@ -491,7 +585,8 @@ TEST(FastLpsPlastic, DuctileFailureOnset) {
       return Mat<3>(Vec<3>(eps, lateral, lateral).asDiagonal());
     };
     auto onset = [&](const std::function<Mat<3>(double)>& path) {
-      test::PlasticBlock<3> b({.material = kSteel, .hardening = hardening, .failure = {true, d0_here, c, core::FailureRule::strain}});
+      test::PlasticBlock<3> b(
+          {.material = kSteel, .hardening = hardening, .failure = {true, d0_here, c, core::FailureRule::strain}});
       return b.homogeneous_onset(path, 0.1 * ey, 800);
     };
     return onset(shear) / onset(uniaxial) / std::exp(-c / 3.0);
@@ -499,16 +594,23 @@ TEST(FastLpsPlastic, DuctileFailureOnset) {
   const double small_yield = 1e-5 * kSteel.E;
   const double ratio = onset_ratio({small_yield, 20e9}, 20.0 * small_yield / kSteel.E);
   const double steel_ratio = onset_ratio(kHardening, d0);
-  test::record_gate({.id = "lps_plastic.ductile_failure.triaxiality",
-                     .claim = "On homogeneous paths (σ_y = 1e-5 E, d₀ = 20 ε_y) the equivalent plastic strain at failure in "
-                              "simple shear (η = 0) over that in uniaxial tension (η = 1/3) shall be exp(−c/3) (measured: "
-                              "ratio / exp(−c/3); with the steel's σ_y and d₀ = 0.02 the same ratio is " +
-                              std::to_string(steel_ratio) + ": simple shear at γ ≈ 3.6 % carries a second-order mean stress "
-                              "in PD's exact bond kinematics)",
-                     .measured = ratio, .expected = 1.0, .tolerance = 0.02, .compare = test::Compare::rel,
-                     .tolerance_reason = "2 %: the path's step (0.1 ε_y of strain, ≤ 1 % of ε̄_p at failure); η is "
-                                         "exact to O(ε) = 1e-4 at these strains.",
-                     .source = "[noorian] eqs 8–9; [hooputra2004] (c < 0)", .unit = "", .problem = kProblem});
+  test::record_gate(
+      {.id = "lps_plastic.ductile_failure.triaxiality",
+       .claim = "On homogeneous paths (σ_y = 1e-5 E, d₀ = 20 ε_y) the equivalent plastic strain at failure in "
+                "simple shear (η = 0) over that in uniaxial tension (η = 1/3) shall be exp(−c/3) (measured: "
+                "ratio / exp(−c/3); with the steel's σ_y and d₀ = 0.02 the same ratio is " +
+           std::to_string(steel_ratio) +
+           ": simple shear at γ ≈ 3.6 % carries a second-order mean stress "
+           "in PD's exact bond kinematics)",
+       .measured = ratio,
+       .expected = 1.0,
+       .tolerance = 0.02,
+       .compare = test::Compare::rel,
+       .tolerance_reason = "2 %: the path's step (0.1 ε_y of strain, ≤ 1 % of ε̄_p at failure); η is "
+                           "exact to O(ε) = 1e-4 at these strains.",
+       .source = "[noorian] eqs 8–9; [hooputra2004] (c < 0)",
+       .unit = "",
+       .problem = kProblem});
 }
 
 // Deviatoric hold (the test that exposed the divergence of LAMMPS' peri/eps under
@@ -580,17 +682,23 @@ TEST(FastLpsPlastic, DeviatoricHoldKeepsTheJ2Plateau) {
                      .claim = "A cube strained at constant volume to 2.2× the yield strain (outer 2δ layer prescribed) "
                               "and held for 10⁴ damped steps: the centre's σ̄ shall stay at the J2 plateau σ_y + H ε̄_p "
                               "within 1 % throughout the hold",
-                     .measured = worst, .expected = 0.01, .compare = test::Compare::at_most,
+                     .measured = worst,
+                     .expected = 0.01,
+                     .compare = test::Compare::at_most,
                      .tolerance_reason = "The issue's bound: the interior lags the ramped layer dynamically, so its "
                                          "path is proportional only up to the damped vibration",
-                     .source = "[mitchell2011] deviatoric return; [simo-hughes1998] J2 along a proportional path", .unit = "",
+                     .source = "[mitchell2011] deviatoric return; [simo-hughes1998] J2 along a proportional path",
+                     .unit = "",
                      .problem = kProblem});
   test::record_gate({.id = "lps_plastic.deviatoric_hold.kinetic",
                      .claim = "At the end of the hold the kinetic energy of the free interior shall be ≤ 1e-10 of the "
                               "stored elastic energy (no sustained flow feeds motion)",
-                     .measured = kinetic / stored, .expected = 1e-10, .compare = test::Compare::at_most,
+                     .measured = kinetic / stored,
+                     .expected = 1e-10,
+                     .compare = test::Compare::at_most,
                      .tolerance_reason = "The issue's bound; 10⁴ steps of c Δt = 2e-3 damp a free vibration by e⁻²⁰",
-                     .source = "[pdmpm] the committed plastic state does not return again at a held strain", .unit = "",
+                     .source = "[pdmpm] the committed plastic state does not return again at a held strain",
+                     .unit = "",
                      .problem = kProblem});
 }
 
@@ -642,14 +750,18 @@ fields = ["eq_plastic_strain", "stress", "triaxiality"]
   const double work = m["external_work"].get<double>(), plastic = m["plastic_work"].get<double>();
   ASSERT_GT(plastic, 0.1 * work) << "the bar must flow for this claim";
   test::record_gate({.id = "lps_plastic.energy_balance",
-                     .claim = "A 3D bar pulled at 20 m/s to " + std::to_string(m["max_eq_plastic_strain"].get<double>()) +
-                              " equivalent plastic strain shall satisfy external work = kinetic + stored + plastic "
-                              "work (measured: |K + U + W_p − W_ext| / W_ext at the end)",
-                     .measured = std::abs(m["energy_error"].get<double>()) / work, .expected = 1e-3,
+                     .claim = "A 3D bar pulled at 20 m/s to " +
+                         std::to_string(m["max_eq_plastic_strain"].get<double>()) +
+                         " equivalent plastic strain shall satisfy external work = kinetic + stored + plastic "
+                         "work (measured: |K + U + W_p − W_ext| / W_ext at the end)",
+                     .measured = std::abs(m["energy_error"].get<double>()) / work,
+                     .expected = 1e-3,
                      .compare = test::Compare::at_most,
                      .tolerance_reason = "The issue's bound. Verlet is not exactly energy-conserving; its O(Δt²) "
                                          "shadow-energy error and the trapezoidal booking of the boundary work remain.",
-                     .source = "[pdmpm] docs/models/lps_plastic.md (plastic work booked with the committed state)", .unit = "", .problem = kProblem});
+                     .source = "[pdmpm] docs/models/lps_plastic.md (plastic work booked with the committed state)",
+                     .unit = "",
+                     .problem = kProblem});
 }
 
 }  // namespace

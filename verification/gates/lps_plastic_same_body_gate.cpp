@@ -92,18 +92,27 @@ TEST(FastLpsPlasticSameBody, StripFollowsTheCurveInBothMethods) {
       "1 % of σ_y, the issue's bound: the dynamic residue of the finite pull rate (ramp over 20 wave transits, "
       "then ≈ 25 /s) and, in PD, the gauge's discrete strain measure; the material response is exact along this path";
   test::record_gate({.id = "lps_plastic.same_body.pd",
-                     .claim = "The plastic_strip scene with elastoplastic PD: the mean σ_xx of the gauge's interior "
-                              "particles (≥ δ from the free edges) shall follow σ_y + E_t(ε − σ_y/E) of the gauge strain "
-                              "within 1 % of σ_y, from σ_y/(4E) to 10 σ_y/E and beyond",
-                     .measured = worst_pd, .expected = 0.01, .compare = test::Compare::at_most,
+                     .claim =
+                         "The plastic_strip scene with elastoplastic PD: the mean σ_xx of the gauge's interior "
+                         "particles (≥ δ from the free edges) shall follow σ_y + E_t(ε − σ_y/E) of the gauge strain "
+                         "within 1 % of σ_y, from σ_y/(4E) to 10 σ_y/E and beyond",
+                     .measured = worst_pd,
+                     .expected = 0.01,
+                     .compare = test::Compare::at_most,
                      .tolerance_reason = reason,
-                     .source = "[simo-hughes1998] bilinear uniaxial law; [noorian] material", .unit = "", .problem = kProblem});
+                     .source = "[simo-hughes1998] bilinear uniaxial law; [noorian] material",
+                     .unit = "",
+                     .problem = kProblem});
   test::record_gate({.id = "lps_plastic.same_body.mpm",
-                     .claim = "The same scene with MPM J2 (GIMP, MUSL, cell 2Δx): the gauge's mean σ_xx shall follow the "
-                              "bilinear law of its logarithmic strain within 1 % of σ_y",
-                     .measured = worst_mpm, .expected = 0.01, .compare = test::Compare::at_most,
+                     .claim =
+                         "The same scene with MPM J2 (GIMP, MUSL, cell 2Δx): the gauge's mean σ_xx shall follow the "
+                         "bilinear law of its logarithmic strain within 1 % of σ_y",
+                     .measured = worst_mpm,
+                     .expected = 0.01,
+                     .compare = test::Compare::at_most,
                      .tolerance_reason = reason,
-                     .source = "[simo-hughes1998] bilinear uniaxial law (Hencky strain, Kirchhoff stress)", .unit = "",
+                     .source = "[simo-hughes1998] bilinear uniaxial law (Hencky strain, Kirchhoff stress)",
+                     .unit = "",
                      .problem = kProblem});
   test::record_data(kProblem, "07_same_body_strip",
                     {{"kind", "plot"},
@@ -112,12 +121,14 @@ TEST(FastLpsPlasticSameBody, StripFollowsTheCurveInBothMethods) {
                      {"ylabel", "σ_xx (MPa)"},
                      {"xscale", "linear"},
                      {"yscale", "linear"},
-                     {"series", {mu::series("bilinear law (small strain)", exact_e, exact_s),
-                                 mu::series("elastoplastic PD (lps_plastic)", es_pd, ss_pd, "points"),
-                                 mu::series("MPM J2 (GIMP, MUSL)", es_mpm, ss_mpm, "dashed")}},
-                     {"caption", "verification/scenes/plastic_strip.toml: 40 × 10 mm, Δx = 1 mm, δ = 3.015Δx, plane "
-                                 "stress; grips pulled apart at ±0.48 m/s. Gauge: 10–30 mm, rows ≥ δ from the free "
-                                 "edges. MPM's curve is the same law in the log strain (≈ ε²/2 apart at 2 %)."}});
+                     {"series",
+                      {mu::series("bilinear law (small strain)", exact_e, exact_s),
+                       mu::series("elastoplastic PD (lps_plastic)", es_pd, ss_pd, "points"),
+                       mu::series("MPM J2 (GIMP, MUSL)", es_mpm, ss_mpm, "dashed")}},
+                     {"caption",
+                      "verification/scenes/plastic_strip.toml: 40 × 10 mm, Δx = 1 mm, δ = 3.015Δx, plane "
+                      "stress; grips pulled apart at ±0.48 m/s. Gauge: 10–30 mm, rows ≥ δ from the free "
+                      "edges. MPM's curve is the same law in the log strain (≈ ε²/2 apart at 2 %)."}});
 }
 
 // Final-frame reference positions and ε̄_p of a 2D run.
@@ -132,7 +143,8 @@ PlasticMap final_plastic_map(const test::GateRun& run) {
   const auto pos = fields.read(frame, "position"), u = fields.read(frame, "displacement");
   PlasticMap m;
   m.eq_plastic = fields.read(frame, "eq_plastic_strain");
-  for (std::size_t i = 0; i < m.eq_plastic.size(); ++i) m.x0.push_back({pos[3 * i] - u[3 * i], pos[3 * i + 1] - u[3 * i + 1]});
+  for (std::size_t i = 0; i < m.eq_plastic.size(); ++i)
+    m.x0.push_back({pos[3 * i] - u[3 * i], pos[3 * i + 1] - u[3 * i + 1]});
   return m;
 }
 
@@ -162,7 +174,8 @@ TEST(FastLpsPlasticSameBody, NotchedStripLocalisesInBothMethods) {
   double localisation[2];
   for (const int k : {0, 1}) {
     const bool pd = k == 0;
-    const auto run = test::run_for_gate(pd ? pd_scene : as_mpm_j2(pd_scene), kProblem, pd ? "notched_pd" : "notched_mpm");
+    const auto run =
+        test::run_for_gate(pd ? pd_scene : as_mpm_j2(pd_scene), kProblem, pd ? "notched_pd" : "notched_mpm");
     const auto right = run.history("probe_grip_right_ux"), left = run.history("probe_grip_left_ux");
     const auto reaction = run.history("reaction_right_x");
     for (std::size_t i = 0; i < right.size(); ++i) {
@@ -182,31 +195,38 @@ TEST(FastLpsPlasticSameBody, NotchedStripLocalisesInBothMethods) {
             << ", max |F_PD − F_MPM| / F_limit " << difference << "\n";
   for (const int k : {0, 1})
     test::record_gate({.id = std::string("lps_plastic.notched_strip.localisation.") + (k == 0 ? "pd" : "mpm"),
-                       .claim = std::string("A notched strip pulled to ≈ 5 % (") + (k == 0 ? "elastoplastic PD" : "MPM J2") +
-                                ") shall localise its plastic flow in the ligament: mean ε̄_p across the ligament ≥ 5× "
-                                "the mean 10 mm away",
-                       .measured = localisation[k], .expected = 5.0, .compare = test::Compare::at_least,
+                       .claim = std::string("A notched strip pulled to ≈ 5 % (") +
+                           (k == 0 ? "elastoplastic PD" : "MPM J2") +
+                           ") shall localise its plastic flow in the ligament: mean ε̄_p across the ligament ≥ 5× "
+                           "the mean 10 mm away",
+                       .measured = localisation[k],
+                       .expected = 5.0,
+                       .compare = test::Compare::at_least,
                        .tolerance_reason = "A bound, not a band: with E_t/E < 1 % the ligament (40 % of the section) "
                                            "flows while the shoulders stay near yield; 5× separates a band from "
                                            "uniform flow",
-                       .source = "[simo-hughes1998] limit load of a plane-stress ligament; [noorian] material", .unit = "",
+                       .source = "[simo-hughes1998] limit load of a plane-stress ligament; [noorian] material",
+                       .unit = "",
                        .problem = kProblem});
-  test::record_data(kProblem, "08_notched_strip",
-                    {{"kind", "plot"},
-                     {"title", "Notched strip: load against grip displacement, PD and MPM"},
-                     {"xlabel", "grip separation change (mm)"},
-                     {"ylabel", "load / (σ_y × ligament area)"},
-                     {"xscale", "linear"},
-                     {"yscale", "linear"},
-                     {"series", {mu::series("elastoplastic PD (lps_plastic)", d[0], f[0]),
-                                 mu::series("MPM J2 (GIMP, MUSL)", d[1], f[1], "dashed")}},
-                     {"caption", "verification/scenes/plastic_notched_strip.toml (two R 3 mm notches, 4 mm ligament, "
-                                 "Δx = 1 mm). Largest difference of the PD load from MPM's at equal displacement: " +
-                                     std::to_string(difference) + " of the ligament's yield load (MPM's peak: " +
-                                     std::to_string(peak) + "). No band: PD's horizon (3 mm) spans most of the ligament, "
-                                     "MPM's GIMP stencil one cell, and the methods localise differently. PD is the stiffer and "
-                                     "stronger: its bonds are formed between all sites within δ, so near the ligament "
-                                     "they bridge the notches (no visibility criterion for subtracted shapes)."}});
+  test::record_data(
+      kProblem, "08_notched_strip",
+      {{"kind", "plot"},
+       {"title", "Notched strip: load against grip displacement, PD and MPM"},
+       {"xlabel", "grip separation change (mm)"},
+       {"ylabel", "load / (σ_y × ligament area)"},
+       {"xscale", "linear"},
+       {"yscale", "linear"},
+       {"series",
+        {mu::series("elastoplastic PD (lps_plastic)", d[0], f[0]),
+         mu::series("MPM J2 (GIMP, MUSL)", d[1], f[1], "dashed")}},
+       {"caption",
+        "verification/scenes/plastic_notched_strip.toml (two R 3 mm notches, 4 mm ligament, "
+        "Δx = 1 mm). Largest difference of the PD load from MPM's at equal displacement: " +
+            std::to_string(difference) + " of the ligament's yield load (MPM's peak: " + std::to_string(peak) +
+            "). No band: PD's horizon (3 mm) spans most of the ligament, "
+            "MPM's GIMP stencil one cell, and the methods localise differently. PD is the stiffer and "
+            "stronger: its bonds are formed between all sites within δ, so near the ligament "
+            "they bridge the notches (no visibility criterion for subtracted shapes)."}});
   double scale = 0.0;
   for (const auto& m : maps) scale = std::max(scale, *std::max_element(m.eq_plastic.begin(), m.eq_plastic.end()));
   for (const int k : {0, 1}) {

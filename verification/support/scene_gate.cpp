@@ -15,7 +15,9 @@ namespace pdmpm::test {
 
 namespace fs = std::filesystem;
 
-std::string scene_file(const std::string& name) { return std::string(PDMPM_SOURCE_DIR) + "/verification/scenes/" + name; }
+std::string scene_file(const std::string& name) {
+  return std::string(PDMPM_SOURCE_DIR) + "/verification/scenes/" + name;
+}
 
 GateRun run_for_gate(const io::Scene& scene, const std::string& problem, const std::string& tag) {
   GateRun g;
@@ -97,7 +99,9 @@ Raster damage_with_paths(const Frame2d& frame, const nlohmann::json& crack, doub
 
 double mirror_asymmetry(const Frame2d& frame, int axis, double position, double dx) {
   std::map<std::pair<long, long>, std::size_t> at;
-  auto key = [&](double a, double b) { return std::make_pair(std::lround(a / (0.5 * dx)), std::lround(b / (0.5 * dx))); };
+  auto key = [&](double a, double b) {
+    return std::make_pair(std::lround(a / (0.5 * dx)), std::lround(b / (0.5 * dx)));
+  };
   for (std::size_t i = 0; i < frame.x0.size(); ++i) at[key(frame.x0[i][0], frame.x0[i][1])] = i;
   double diff = 0.0, total = 0.0;
   for (std::size_t i = 0; i < frame.x0.size(); ++i) {
@@ -121,8 +125,9 @@ void record_crack_table(const std::string& problem, const nlohmann::json& crack,
   record_data(problem, "02_cracks",
               {{"kind", "table"},
                {"title", "Cracks (≥ 5 cracked particles) at the end of the run"},
-               {"columns", {"origin x [m]", "origin y [m]", "start [s]", "tip x [m]", "tip y [m]", "angle [°]",
-                            "max speed [m/s]", "Rayleigh speed [m/s]"}},
+               {"columns",
+                {"origin x [m]", "origin y [m]", "start [s]", "tip x [m]", "tip y [m]", "angle [°]", "max speed [m/s]",
+                 "Rayleigh speed [m/s]"}},
                {"rows", rows},
                {"caption", caption}});
 }
