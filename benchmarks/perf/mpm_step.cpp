@@ -3,7 +3,6 @@
 #include <fmt/format.h>
 #include <omp.h>
 
-#include <map>
 #include <memory>
 
 #include "benchmarks/perf/perf_output.hpp"

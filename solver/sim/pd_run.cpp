@@ -24,7 +24,11 @@ template <int D>
 class PdRun {
  public:
   PdRun(const io::Scene& scene, PdSetup<D>& setup, const RunOptions& options)
-      : scene_(scene), s_(setup), p_(setup.system.particles), simulation_(make_simulation(setup)), rec_(scene, options) {}
+      : scene_(scene),
+        s_(setup),
+        p_(setup.system.particles),
+        simulation_(make_simulation(setup)),
+        rec_(scene, options) {}
 
   RunResult run();
 
@@ -75,7 +79,8 @@ void PdRun<D>::choose_time_step() {
   }
   const double estimate = scene_.time.estimate == io::StableStepEstimate::lanczos ? dt_lanczos_ : dt_sa_;
   if (!std::isfinite(estimate))
-    throw InputError(scene_.file, "shape", "no particle has a bond: the body falls apart at once (horizon too small or body too thin)");
+    throw InputError(scene_.file, "shape",
+                     "no particle has a bond: the body falls apart at once (horizon too small or body too thin)");
   if (scene_.time.dt) {
     dt_ = *scene_.time.dt;
     if (dt_ > dt_lanczos_) {
@@ -149,7 +154,8 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
 
 template <int D>
 void PdRun<D>::history_row(std::int64_t step, double t) {
-  std::vector<double> row{static_cast<double>(step), t, kinetic_energy_, internal_energy_, external_work_, energy_error()};
+  std::vector<double> row{
+      static_cast<double>(step), t, kinetic_energy_, internal_energy_, external_work_, energy_error()};
   const Vec<D> mom = simulation_.momentum();
   const Eigen::Vector3d ang = simulation_.angular_momentum();
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
@@ -239,7 +245,8 @@ void PdRun<D>::frame(std::int64_t step, double t) {
       fields.push_back({"triaxiality", io::FieldKind::scalar, eta});
     }
   }
-  if (wants("eq_plastic_strain")) fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, *s_.model->eq_plastic_strain()});
+  if (wants("eq_plastic_strain"))
+    fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, *s_.model->eq_plastic_strain()});
   writer->write_frame(step, t, vec3(pos), fields);
 }
 
@@ -345,7 +352,9 @@ nlohmann::json PdRun<D>::summary() const {
       {"force_time_s", simulation_.force_seconds()},
       {"contact_time_s", simulation_.contact_seconds()},
       {"bond_updates_per_second",
-       simulation_.force_seconds() > 0 ? static_cast<double>(simulation_.bond_evaluations()) / simulation_.force_seconds() : 0.0},
+       simulation_.force_seconds() > 0
+           ? static_cast<double>(simulation_.bond_evaluations()) / simulation_.force_seconds()
+           : 0.0},
       {"bytes_per_bond_side",
        (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
       {"metrics",
@@ -375,8 +384,10 @@ template <int D>
 RunResult PdRun<D>::run() {
   choose_time_step();
   start_outputs();
-  if (scene_.time.integrator == io::Integrator::verlet) verlet();
-  else adr();
+  if (scene_.time.integrator == io::Integrator::verlet)
+    verlet();
+  else
+    adr();
   return rec_.finish(steps_done_, static_cast<double>(steps_done_) * dt_, simulation_.broken_bonds(), p_.n_real,
                      summary());
 }

@@ -20,11 +20,20 @@ void add_constraint(const io::Scene& s, const io::BoundarySpec& b, std::vector<I
   c.name = b.name;
   c.particles = std::move(particles);
   switch (b.kind) {
-    case io::BoundaryKind::fixed: c.kind = bc::ConstraintKind::fixed; break;
-    case io::BoundaryKind::displacement: c.kind = bc::ConstraintKind::displacement; break;
-    case io::BoundaryKind::velocity: c.kind = bc::ConstraintKind::velocity; break;
-    case io::BoundaryKind::analytic: c.kind = bc::ConstraintKind::analytic; break;
-    case io::BoundaryKind::traction: break;
+    case io::BoundaryKind::fixed:
+      c.kind = bc::ConstraintKind::fixed;
+      break;
+    case io::BoundaryKind::displacement:
+      c.kind = bc::ConstraintKind::displacement;
+      break;
+    case io::BoundaryKind::velocity:
+      c.kind = bc::ConstraintKind::velocity;
+      break;
+    case io::BoundaryKind::analytic:
+      c.kind = bc::ConstraintKind::analytic;
+      break;
+    case io::BoundaryKind::traction:
+      break;
   }
   for (int a = 0; a < D; ++a) {
     const bool fully = b.kind == io::BoundaryKind::fixed || b.kind == io::BoundaryKind::analytic;
@@ -46,7 +55,8 @@ PdSetup<D> build_pd(const io::Scene& s) {
   const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
   sys.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
   if (sys.particles.n_real == 0)
-    throw InputError(s.file, "shape", "the shapes contain no lattice site: check their extents against discretization.spacing");
+    throw InputError(s.file, "shape",
+                     "the shapes contain no lattice site: check their extents against discretization.spacing");
 
   sys.setting = s.setting;
   sys.material = s.material;
@@ -79,27 +89,30 @@ PdSetup<D> build_pd(const io::Scene& s) {
   try {
     out.model->initialise(sys);
   } catch (const std::invalid_argument& e) {  // a stencil the model cannot take (lps_plastic's isotropy weights)
-    throw InputError(s.file, "model.isotropy", std::string(e.what()) + "; use isotropy = \"lattice\" or another horizon ratio");
+    throw InputError(s.file, "model.isotropy",
+                     std::string(e.what()) + "; use isotropy = \"lattice\" or another horizon ratio");
   }
   out.damage = s.damage;
   out.break_after_force = s.break_after_force;
   // With the ductile criterion alone no bond breaks by stretch (s₀ = ∞).
   if (s.damage)
     out.critical_stretch = s.critical_stretch ? *s.critical_stretch
-                           : s.fracture_energy ? pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy,
-                                                                      s.delta, sys.measure)
-                                               : std::numeric_limits<double>::infinity();
+        : s.fracture_energy
+        ? pd::critical_stretch(s.influence, s.setting, s.material, *s.fracture_energy, s.delta, sys.measure)
+        : std::numeric_limits<double>::infinity();
 
   for (const auto& b : s.boundaries) {
     auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(b.region), s.spacing);
     if (selected.empty())
-      throw InputError(s.file, b.key + ".region", "selects no particle (particles sit on lattice sites; check the region against the body)");
+      throw InputError(s.file, b.key + ".region",
+                       "selects no particle (particles sit on lattice sites; check the region against the body)");
     if (b.kind == io::BoundaryKind::traction) {
       bc::Traction<D> t;
       t.name = b.name;
       t.particles = std::move(selected);
       for (int a = 0; a < D; ++a) {
-        if (b.value[a] == "free") throw InputError(s.file, b.key + ".value", "a traction component cannot be \"free\" (use 0)");
+        if (b.value[a] == "free")
+          throw InputError(s.file, b.key + ".value", "a traction component cannot be \"free\" (use 0)");
         t.value[a] = bc::Expression::parse(b.value[a]);
       }
       t.layer = b.layer > 0.0 ? b.layer : s.spacing;
@@ -125,16 +138,20 @@ PdSetup<D> build_pd(const io::Scene& s) {
   }
   if (s.contact.enabled) {
     const double c = pd::pmb_micromodulus(pd::Influence::constant, s.setting, s.material, s.delta, sys.measure);
-    out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor, s.contact.max_distance,
-                                               s.contact.bonded_pairs}, c);
+    out.contact.emplace(pd::ContactParameters{s.contact.stiffness_factor, s.contact.distance_factor,
+                                              s.contact.max_distance, s.contact.bonded_pairs},
+                        c);
   }
   out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
   if (s.crack.enabled) {
-    out.crack = pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
+    out.crack =
+        pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
     out.crack_exclude.assign(static_cast<std::size_t>(sys.particles.n_real), 0);
     if (!s.crack.exclude.empty()) {
-      const auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(s.crack.exclude), s.spacing);
-      if (selected.empty()) throw InputError(s.file, "crack.exclude", "selects no particle (check the region against the body)");
+      const auto selected =
+          select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(s.crack.exclude), s.spacing);
+      if (selected.empty())
+        throw InputError(s.file, "crack.exclude", "selects no particle (check the region against the body)");
       for (Index i : selected) out.crack_exclude[i] = 1;
     }
     for (const auto& o : s.observes) {
@@ -145,7 +162,8 @@ PdSetup<D> build_pd(const io::Scene& s) {
       for (Index i = 0; i < sys.particles.n_real; ++i)
         if ((sys.particles.x0[i] - loc.point).norm() <= loc.radius * (1.0 + 1e-12)) loc.particles.push_back(i);
       if (loc.particles.empty())
-        throw InputError(s.file, o.key + ".point", "no particle lies within the radius of this point (is it inside the body?)");
+        throw InputError(s.file, o.key + ".point",
+                         "no particle lies within the radius of this point (is it inside the body?)");
       out.locations.push_back(std::move(loc));
     }
   }

@@ -45,7 +45,7 @@ std::string dim_name(int D) { return D == 2 ? "2d" : "3d"; }
 std::string body_scene(const std::string& model, int D, const std::string& shape, double critical_stretch,
                        const std::string& material_keys) {
   std::string s = "[scene]\nid = \"conservation\"\n[discretization]\ndimension = " + std::to_string(D) +
-                  "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
+      "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
   s += shape;
   s += "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n";
@@ -59,10 +59,10 @@ std::string body_scene(const std::string& model, int D, const std::string& shape
 std::string box(int D, int nx, int ny, int nz) {
   const double dx = 1e-3;
   if (D == 2)
-    return "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [" + std::to_string(nx * dx) + ", " + std::to_string(ny * dx) +
-           "]\n";
+    return "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [" + std::to_string(nx * dx) + ", " +
+        std::to_string(ny * dx) + "]\n";
   return "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [" + std::to_string(nx * dx) + ", " +
-         std::to_string(ny * dx) + ", " + std::to_string(nz * dx) + "]\n";
+      std::to_string(ny * dx) + ", " + std::to_string(nz * dx) + "]\n";
 }
 
 std::string ball(int D, double radius) {
@@ -140,7 +140,8 @@ MomentumRun momentum_run(const std::string& model, bool spin, int steps, std::ve
                          std::vector<double>* series_drift) {
   const std::string shape = spin ? ball(D, D == 2 ? 8e-3 : 4.5e-3) : box(D, D == 2 ? 40 : 16, D == 2 ? 20 : 8, 8);
   // Fracture: s₀ = 1e-3; the tearing velocity jump 2V = 40 m/s gives a stress of ~ρcV ≈ 0.8 GPa, strain ≈ 4e-3.
-  auto setup = sim::build_pd<D>(io::parse_scene_text(body_scene(model, D, shape, spin ? 0.0 : 1e-3, test::flowing_keys(model)), "conservation"));
+  auto setup = sim::build_pd<D>(
+      io::parse_scene_text(body_scene(model, D, shape, spin ? 0.0 : 1e-3, test::flowing_keys(model)), "conservation"));
   auto& p = setup.system.particles;
   const double V = 20.0, spin_rate = 2e4;  // m/s; rad/s (rim speed 160 m/s in 2D, 90 m/s in 3D)
   Vec<D> drift = Vec<D>::Zero();
@@ -214,19 +215,17 @@ MomentumRun momentum_run(const std::string& model, bool spin, int steps, std::ve
 template <int D>
 void momentum_gates(bool spin) {
   json rows = json::array();
-  json plot = {{"kind", "plot"},
-               {"title", std::string(spin ? "Angular" : "Linear") + " momentum drift, " + dim_name(D)},
-               {"xlabel", "t [s]"},
-               {"ylabel", spin ? "|L(t) − L(0)| / Σ ρV|x||v|" : "|P(t) − P(0)| / Σ ρV|v|"},
-               {"xscale", "linear"},
-               {"yscale", "log"},
-               {"series", json::array()}};
+  json plot = {
+      {"kind", "plot"},         {"title", std::string(spin ? "Angular" : "Linear") + " momentum drift, " + dim_name(D)},
+      {"xlabel", "t [s]"},      {"ylabel", spin ? "|L(t) − L(0)| / Σ ρV|x||v|" : "|P(t) − P(0)| / Σ ρV|v|"},
+      {"xscale", "linear"},     {"yscale", "log"},
+      {"series", json::array()}};
   for (const auto& model : pd::model_names()) {
     std::vector<double> t, d;
     const int steps = D == 2 ? 1500 : 600;
     const auto r = momentum_run<D>(model, spin, steps, &t, &d);
-    const std::string id = std::string("conservation.") + (spin ? "angular_momentum." : "linear_momentum.") + model +
-                           "." + dim_name(D);
+    const std::string id =
+        std::string("conservation.") + (spin ? "angular_momentum." : "linear_momentum.") + model + "." + dim_name(D);
     if (!spin) {
       EXPECT_GT(r.broken, 100) << "the body did not fracture: the momentum claim would not be tested";
     }
@@ -236,24 +235,30 @@ void momentum_gates(bool spin) {
     test::record_gate(
         {.id = id,
          .claim = spin ? "In a free spinning " + std::string(D == 2 ? "disk" : "ball") + " (" + model +
-                    ", no damage) the angular momentum shall be conserved to rounding over " +
-                    std::to_string(r.steps) + " Verlet steps (measured: max |L(t) − L(0)| / Σρ V|x||v|)"
-              : "In a free " + std::string(D == 2 ? "plate" : "block") + " (" + model +
-                    ") torn apart by its initial velocity (" + std::to_string(r.broken) +
-                    " bonds broken) the linear momentum shall be conserved to rounding over " +
-                    std::to_string(r.steps) + " Verlet steps (measured: max |P(t) − P(0)| / Σρ V|v|)",
-         .measured = r.drift / r.scale, .expected = r.bound / r.scale, .tolerance = 0.0, .compare = test::Compare::at_most,
-         .tolerance_reason = spin ? "Pair forces act along the deformed bond, so pair torques cancel and Verlet conserves Σ m x × v "
-                "exactly; the bound is the worst-case rounding accumulated over the run: per step (n_b + 5)u Δt "
-                "Σ_i V|x_i| Σ_j|pair term| (family sums, lever arm, x_i − x_j vs y) + 2u Σ ρV|x||v| (velocity "
-                "updates) + u Σ ρV|u||v| (drift), plus 2Nu Σ ρV|x||v| for the final sums."
-              : "The pair terms are bitwise antisymmetric, so only rounding changes P; the bound is its worst case "
-                "accumulated over the run: per step (n_b + 3)u Δt Σ_i V Σ_j|pair term| (family sums of ≤ n_b terms) "
-                "+ 2u Σ ρV|v| (velocity updates), plus 2Nu Σ ρV|v| for the final sums.",
-         .source = "Newton's third law for PD pair forces ([silling2000]; [silling2007] §4 for states); velocity Verlet "
-         "conserves linear and angular momentum of central pair forces (Hairer, Lubich & Wanner, Geometric "
-         "Numerical Integration, §IV.1)",
-         .unit = "", .problem = "conservation"});
+                 ", no damage) the angular momentum shall be conserved to rounding over " + std::to_string(r.steps) +
+                 " Verlet steps (measured: max |L(t) − L(0)| / Σρ V|x||v|)"
+                       : "In a free " + std::string(D == 2 ? "plate" : "block") + " (" + model +
+                 ") torn apart by its initial velocity (" + std::to_string(r.broken) +
+                 " bonds broken) the linear momentum shall be conserved to rounding over " + std::to_string(r.steps) +
+                 " Verlet steps (measured: max |P(t) − P(0)| / Σρ V|v|)",
+         .measured = r.drift / r.scale,
+         .expected = r.bound / r.scale,
+         .tolerance = 0.0,
+         .compare = test::Compare::at_most,
+         .tolerance_reason = spin
+             ? "Pair forces act along the deformed bond, so pair torques cancel and Verlet conserves Σ m x × v "
+               "exactly; the bound is the worst-case rounding accumulated over the run: per step (n_b + 5)u Δt "
+               "Σ_i V|x_i| Σ_j|pair term| (family sums, lever arm, x_i − x_j vs y) + 2u Σ ρV|x||v| (velocity "
+               "updates) + u Σ ρV|u||v| (drift), plus 2Nu Σ ρV|x||v| for the final sums."
+             : "The pair terms are bitwise antisymmetric, so only rounding changes P; the bound is its worst case "
+               "accumulated over the run: per step (n_b + 3)u Δt Σ_i V Σ_j|pair term| (family sums of ≤ n_b terms) "
+               "+ 2u Σ ρV|v| (velocity updates), plus 2Nu Σ ρV|v| for the final sums.",
+         .source =
+             "Newton's third law for PD pair forces ([silling2000]; [silling2007] §4 for states); velocity Verlet "
+             "conserves linear and angular momentum of central pair forces (Hairer, Lubich & Wanner, Geometric "
+             "Numerical Integration, §IV.1)",
+         .unit = "",
+         .problem = "conservation"});
   }
   test::record_data("conservation", std::string(spin ? "angular_" : "linear_") + dim_name(D),
                     {{"kind", "table"},
@@ -332,38 +337,47 @@ void energy_gates() {
     // Largest bond strain scale: a/c with c the longitudinal speed.
     const double c_long = std::sqrt(setup.system.material.wave_modulus(setup.system.setting) / rho);
     const double strain = a / c_long * std::sqrt(static_cast<double>(D));
-    test::record_gate({.id = id + ".shadow",
-                       .claim = "Over 10⁴ velocity-Verlet steps at 0.8 × the Lanczos stable step (" + model + ", " +
-                           dim_name(D) +
-                           ", free body, smooth initial velocity) the shadow energy K + U − (Δt²/8)ΣV|f|²/ρ shall "
-                           "stay constant (measured: max deviation / E₀)",
-                       .measured = shadow_dev, .expected = 0.0, .tolerance = 10.0 * strain, .compare = test::Compare::abs,
-                       .tolerance_reason = "For the linearised system the shadow energy is an exact invariant of velocity Verlet; the PD "
-                       "kinematics add relative terms of the order of the strain (≈ a/c_p √D = " +
-                           std::to_string(strain) +
-                           "), and the Δt² correction multiplies them by ≤ 0.64. 10 × strain covers the constants; "
-                           "a secular drift of a non-symplectic scheme would grow with the 10⁴ steps instead.",
-                       .source = "[hairer2006] §IX (modified energy); derivation in "
-                       "conservation_gate.cpp",
-                       .unit = "", .problem = "conservation"});
-    test::record_gate({.id = id + ".drift",
-                       .claim = "Over the same run the fitted drift of E = K + U (least-squares slope × duration / E₀) shall "
-                       "not exceed what a bounded oscillation of the measured amplitude can produce",
-                       .measured = drift_E, .expected = 1.5 * (gmax - gmin) + drift_I, .tolerance = 0.0, .compare = test::Compare::at_most,
-                       .tolerance_reason = "E = I_h + g(t) with g = (Δt²/8)ΣV|f|²/ρ ∈ [g_min, g_max]; the least-squares slope of a signal "
-                       "confined to a band of width a over a window T satisfies |b|T ≤ 1.5a (Σ|t − t̄| / Σ(t − t̄)² = "
-                       "3/T), so |b_E|T ≤ 1.5(g_max − g_min) + |b_I|T. A secular drift would exceed it.",
-                       .source = "Velocity Verlet: bounded energy error, no drift ([hairer2006] §IX.8)", .unit = "",
-                       .problem = "conservation"});
-    rows.push_back({model, dim_name(D), p.n_real, dt, lz.dt, steps, T, emax, gmax - gmin, shadow_dev, drift_E,
-                    drift_I});
-    json plot = {{"kind", "plot"},
-                 {"title", "Energy over 10⁴ steps at 0.8 Δt_crit, " + model + ", " + dim_name(D)},
-                 {"xlabel", "t [s]"},
-                 {"ylabel", "relative to E₀"},
-                 {"xscale", "linear"},
-                 {"yscale", "linear"},
-                 {"series", json::array()}};
+    test::record_gate(
+        {.id = id + ".shadow",
+         .claim = "Over 10⁴ velocity-Verlet steps at 0.8 × the Lanczos stable step (" + model + ", " + dim_name(D) +
+             ", free body, smooth initial velocity) the shadow energy K + U − (Δt²/8)ΣV|f|²/ρ shall "
+             "stay constant (measured: max deviation / E₀)",
+         .measured = shadow_dev,
+         .expected = 0.0,
+         .tolerance = 10.0 * strain,
+         .compare = test::Compare::abs,
+         .tolerance_reason =
+             "For the linearised system the shadow energy is an exact invariant of velocity Verlet; the PD "
+             "kinematics add relative terms of the order of the strain (≈ a/c_p √D = " +
+             std::to_string(strain) +
+             "), and the Δt² correction multiplies them by ≤ 0.64. 10 × strain covers the constants; "
+             "a secular drift of a non-symplectic scheme would grow with the 10⁴ steps instead.",
+         .source = "[hairer2006] §IX (modified energy); derivation in "
+                   "conservation_gate.cpp",
+         .unit = "",
+         .problem = "conservation"});
+    test::record_gate(
+        {.id = id + ".drift",
+         .claim = "Over the same run the fitted drift of E = K + U (least-squares slope × duration / E₀) shall "
+                  "not exceed what a bounded oscillation of the measured amplitude can produce",
+         .measured = drift_E,
+         .expected = 1.5 * (gmax - gmin) + drift_I,
+         .tolerance = 0.0,
+         .compare = test::Compare::at_most,
+         .tolerance_reason =
+             "E = I_h + g(t) with g = (Δt²/8)ΣV|f|²/ρ ∈ [g_min, g_max]; the least-squares slope of a signal "
+             "confined to a band of width a over a window T satisfies |b|T ≤ 1.5a (Σ|t − t̄| / Σ(t − t̄)² = "
+             "3/T), so |b_E|T ≤ 1.5(g_max − g_min) + |b_I|T. A secular drift would exceed it.",
+         .source = "Velocity Verlet: bounded energy error, no drift ([hairer2006] §IX.8)",
+         .unit = "",
+         .problem = "conservation"});
+    rows.push_back(
+        {model, dim_name(D), p.n_real, dt, lz.dt, steps, T, emax, gmax - gmin, shadow_dev, drift_E, drift_I});
+    json plot = {
+        {"kind", "plot"},         {"title", "Energy over 10⁴ steps at 0.8 Δt_crit, " + model + ", " + dim_name(D)},
+        {"xlabel", "t [s]"},      {"ylabel", "relative to E₀"},
+        {"xscale", "linear"},     {"yscale", "linear"},
+        {"series", json::array()}};
     std::vector<double> ts, Es, Is;
     for (std::size_t k = 0; k < t.size(); k += 20) ts.push_back(t[k]), Es.push_back(E[k]), Is.push_back(I[k]);
     plot["series"].push_back({{"label", "E/E₀ − 1"}, {"x", ts}, {"y", Es}, {"style", "line"}});

@@ -34,8 +34,8 @@
 namespace pdmpm {
 namespace {
 
-using nlohmann::json;
 using core::Setting;
+using nlohmann::json;
 constexpr double pi = std::numbers::pi;
 constexpr double dx = 1e-3;
 constexpr double E = 200e9, rho = 7850.0;
@@ -69,8 +69,8 @@ std::string slab_scene(const std::string& model, core::Setting s, int N, int wid
   for (int a = 1; a < D; ++a) lo += ", 0", hi += ", " + g17(width * dx);
   lo += "]", hi += "]";
   std::string t = "[scene]\nid = \"dispersion\"\n[discretization]\ndimension = " + std::to_string(D) +
-                  "\nspacing = " + g17(dx) + "\nhorizon_ratio = " + g17(d.ratio) + "\npartial_volume = \"" +
-                  str(name(d.pv)) + "\"\n";
+      "\nspacing = " + g17(dx) + "\nhorizon_ratio = " + g17(d.ratio) + "\npartial_volume = \"" + str(name(d.pv)) +
+      "\"\n";
   if (D == 2) {
     t += "plane = \"";
     t += s == core::Setting::plane_stress ? "stress" : "strain";
@@ -196,8 +196,10 @@ void dispersion_suite(const std::string& model, core::Setting s, json& long_wave
     const double k = n * pi / slab.length;
     const double w2 = measure_omega2<D>(slab, n, 10);
     const double w2_rel = relation_omega2<D>(model, s, mat, def, measure, k);
-    if (std::isnan(w2_rel)) has_relation = false;
-    else worst = std::max(worst, std::abs(w2 / w2_rel - 1.0));
+    if (std::isnan(w2_rel))
+      has_relation = false;
+    else
+      worst = std::max(worst, std::abs(w2 / w2_rel - 1.0));
     if (n == 1) c2_1 = w2 / (k * k);
     if (n == 2) c2_2 = w2 / (k * k);
     const double c = std::sqrt(w2) / k;
@@ -214,17 +216,24 @@ void dispersion_suite(const std::string& model, core::Setting s, json& long_wave
   // Long-wave limit by Richardson extrapolation of c²(k) = c₀²(1 − αk² + O(k⁴)) over k₁, 2k₁.
   const double c0_default = std::sqrt((4.0 * c2_1 - c2_2) / 3.0) / c_cl;
   if (has_relation)
-    test::record_gate({.id = "dispersion." + tag + ".relation",
-                       .claim = "The frequency of a small-amplitude standing plane wave along x (measured from the Verlet "
-                       "time series) shall equal the derived lattice dispersion relation for kδ = 0.15 … 9.3 (" +
-                           model + ", " + str(name(s)) +
-                           ", ω = 1, seed001, m = 3.015; measured: worst |ω²/ω²_lattice − 1|)",
-                       .measured = worst, .expected = 0.0, .tolerance = 1e-7, .compare = test::Compare::abs,
-                       .tolerance_reason = "The mode is an exact eigenmode of the linearised lattice, so the only differences are the "
-                       "nonlinear kinematics at strain 1e-9 (relative ~1e-9) and rounding of the second difference, "
-                       "which loses log10(1/(ωΔt)²) ≤ 4 digits (≤ 1e-12). 1e-7 leaves margin; a wrong coefficient "
-                       "or moment would be ≥ 1e-3.",
-                       .source = "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/convergence_dispersion.md; [silling2000]", .unit = "", .problem = "dispersion"});
+    test::record_gate(
+        {.id = "dispersion." + tag + ".relation",
+         .claim = "The frequency of a small-amplitude standing plane wave along x (measured from the Verlet "
+                  "time series) shall equal the derived lattice dispersion relation for kδ = 0.15 … 9.3 (" +
+             model + ", " + str(name(s)) + ", ω = 1, seed001, m = 3.015; measured: worst |ω²/ω²_lattice − 1|)",
+         .measured = worst,
+         .expected = 0.0,
+         .tolerance = 1e-7,
+         .compare = test::Compare::abs,
+         .tolerance_reason =
+             "The mode is an exact eigenmode of the linearised lattice, so the only differences are the "
+             "nonlinear kinematics at strain 1e-9 (relative ~1e-9) and rounding of the second difference, "
+             "which loses log10(1/(ωΔt)²) ≤ 4 digits (≤ 1e-12). 1e-7 leaves margin; a wrong coefficient "
+             "or moment would be ≥ 1e-3.",
+         .source = "[pdmpm] derivation in dispersion_gate.cpp header, docs/verification/convergence_dispersion.md; "
+                   "[silling2000]",
+         .unit = "",
+         .problem = "dispersion"});
 
   // 2. Long-wave limit on a converged lattice (ω = 1, extended ramp, m = 8.015): within 1 % of classical.
   Discretisation conv;
@@ -234,33 +243,42 @@ void dispersion_suite(const std::string& model, core::Setting s, json& long_wave
   const double k1 = pi / slab2.length;
   const double c2a = measure_omega2<D>(slab2, 1, 8) / (k1 * k1), c2b = measure_omega2<D>(slab2, 2, 8) / (4 * k1 * k1);
   const double c0 = std::sqrt((4.0 * c2a - c2b) / 3.0) / c_cl;
-  test::record_gate({.id = "dispersion." + tag + ".long_wave",
-                     .claim = "As kδ → 0 the measured wave speed shall approach the classical longitudinal speed of the "
-                     "setting within 1 % on a lattice whose sums are converged (" +
-                         model + ", " + str(name(s)) +
-                         ", ω = 1, m = 8.015, extended partial volume; measured: c₀/c_classical − 1, Richardson over "
-                         "kδ = " + g17(k1 * conv.ratio * dx).substr(0, 6) + " and twice that)",
-                     .measured = c0 - 1.0, .expected = 0.0, .tolerance = 0.01, .compare = test::Compare::abs,
-                     .tolerance_reason = "1 % is the task's bound. The lattice error of this discretisation is ≤ 0.4 % (table 'long-wave "
-                     "error vs m'; lattice_sums: the extended ramp converges at second order); Richardson leaves "
-                     "O((kδ)⁴) ≲ 1e-5. At the default ω = 1, seed001, m = 3.015 the lattice sums are not converged "
-                     "and the claim does not hold (see the tables): that is reported, not gated.",
-                     .source = "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
-                     .unit = "", .problem = "dispersion"});
-  long_wave_rows.push_back({model, str(name(s)), c_cl, c0_default - 1.0,
-                            std::sqrt(relation_omega2<D>(model, s, mat, def, measure, 1e-3 / dx)) / (1e-3 / dx) / c_cl - 1.0,
-                            c0 - 1.0});
+  test::record_gate(
+      {.id = "dispersion." + tag + ".long_wave",
+       .claim = "As kδ → 0 the measured wave speed shall approach the classical longitudinal speed of the "
+                "setting within 1 % on a lattice whose sums are converged (" +
+           model + ", " + str(name(s)) +
+           ", ω = 1, m = 8.015, extended partial volume; measured: c₀/c_classical − 1, Richardson over "
+           "kδ = " +
+           g17(k1 * conv.ratio * dx).substr(0, 6) + " and twice that)",
+       .measured = c0 - 1.0,
+       .expected = 0.0,
+       .tolerance = 0.01,
+       .compare = test::Compare::abs,
+       .tolerance_reason =
+           "1 % is the task's bound. The lattice error of this discretisation is ≤ 0.4 % (table 'long-wave "
+           "error vs m'; lattice_sums: the extended ramp converges at second order); Richardson leaves "
+           "O((kδ)⁴) ≲ 1e-5. At the default ω = 1, seed001, m = 3.015 the lattice sums are not converged "
+           "and the claim does not hold (see the tables): that is reported, not gated.",
+       .source = "[silling2000] (PD dispersion, long-wave limit); classical speeds √(E/ρ), √(E/(ρ(1−ν²))), √((λ+2G)/ρ)",
+       .unit = "",
+       .problem = "dispersion"});
+  long_wave_rows.push_back(
+      {model, str(name(s)), c_cl, c0_default - 1.0,
+       std::sqrt(relation_omega2<D>(model, s, mat, def, measure, 1e-3 / dx)) / (1e-3 / dx) / c_cl - 1.0, c0 - 1.0});
 
-  test::record_data("dispersion", "modes_" + tag,
-                    {{"kind", "table"},
-                     {"title", "Standing waves, " + model + ", " + str(name(s)) + " (ω = 1, seed001, m = 3.015)"},
-                     {"columns",
-                      {"mode n", "kδ", "kΔx", "ω measured [1/s]", "ω lattice relation [1/s]", "c/c_classical measured",
-                       "c/c_classical relation", "ω²/ω²_relation − 1"}},
-                     {"rows", rows},
-                     {"caption", "Slab of 64 sites along x closed by symmetry planes, k = nπ/(64Δx), Δx = 1 mm, "
-                                 "strain amplitude 1e-9, 10 Verlet steps at 0.8 × S&A (the recurrence holds at every step). c_classical = " +
-                                     g17(c_cl).substr(0, 7) + " m/s."}});
+  test::record_data(
+      "dispersion", "modes_" + tag,
+      {{"kind", "table"},
+       {"title", "Standing waves, " + model + ", " + str(name(s)) + " (ω = 1, seed001, m = 3.015)"},
+       {"columns",
+        {"mode n", "kδ", "kΔx", "ω measured [1/s]", "ω lattice relation [1/s]", "c/c_classical measured",
+         "c/c_classical relation", "ω²/ω²_relation − 1"}},
+       {"rows", rows},
+       {"caption",
+        "Slab of 64 sites along x closed by symmetry planes, k = nπ/(64Δx), Δx = 1 mm, "
+        "strain amplitude 1e-9, 10 Verlet steps at 0.8 × S&A (the recurrence holds at every step). c_classical = " +
+            g17(c_cl).substr(0, 7) + " m/s."}});
   json series = json::array();
   series.push_back({{"label", "lattice relation"}, {"x", kd_fine}, {"y", c_rel_fine}, {"style", "line"}});
   series.push_back({{"label", "measured (standing wave)"}, {"x", kd}, {"y", c_meas}, {"style", "points"}});
@@ -304,7 +322,8 @@ TEST(FastDispersion, LongWaveErrorVersusHorizonRatio) {
   json rows = json::array();
   for (const auto& model : pd::model_names()) {
     if (pd::model_info(model).plastic) continue;  // as above
-    for (core::Setting s : {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d}) {
+    for (core::Setting s :
+         {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d}) {
       const auto mat = material_for(model, s);
       for (pd::PartialVolume pv : {pd::PartialVolume::seed001, pd::PartialVolume::extended}) {
         json row = {model, str(name(s)), str(name(pv))};
@@ -313,9 +332,15 @@ TEST(FastDispersion, LongWaveErrorVersusHorizonRatio) {
           const double k = 1e-4 / dx;
           double w2 = 0.0;
           switch (core::dimension(s)) {
-            case 1: w2 = relation_omega2<1>(model, s, mat, d, test::default_measure(s), k); break;
-            case 2: w2 = relation_omega2<2>(model, s, mat, d, test::default_measure(s), k); break;
-            default: w2 = relation_omega2<3>(model, s, mat, d, test::default_measure(s), k); break;
+            case 1:
+              w2 = relation_omega2<1>(model, s, mat, d, test::default_measure(s), k);
+              break;
+            case 2:
+              w2 = relation_omega2<2>(model, s, mat, d, test::default_measure(s), k);
+              break;
+            default:
+              w2 = relation_omega2<3>(model, s, mat, d, test::default_measure(s), k);
+              break;
           }
           row.push_back(std::sqrt(w2) / k / classical_speed(mat, s) - 1.0);
         }
@@ -323,14 +348,16 @@ TEST(FastDispersion, LongWaveErrorVersusHorizonRatio) {
       }
     }
   }
-  test::record_data("dispersion", "long_wave_vs_m",
-                    {{"kind", "table"},
-                     {"title", "Long-wave speed error of the lattice relation, ω = 1"},
-                     {"columns", {"model", "setting", "partial volume", "m = 3.015", "m = 4.015", "m = 5.015", "m = 6.015",
-                                  "m = 8.015"}},
-                     {"rows", rows},
-                     {"caption", "c(k → 0)/c_classical − 1 from the lattice relation (verified against the "
-                                 "dynamics by the dispersion.*.relation gates) at kΔx = 1e-4."}});
+  test::record_data(
+      "dispersion", "long_wave_vs_m",
+      {{"kind", "table"},
+       {"title", "Long-wave speed error of the lattice relation, ω = 1"},
+       {"columns",
+        {"model", "setting", "partial volume", "m = 3.015", "m = 4.015", "m = 5.015", "m = 6.015", "m = 8.015"}},
+       {"rows", rows},
+       {"caption",
+        "c(k → 0)/c_classical − 1 from the lattice relation (verified against the "
+        "dynamics by the dispersion.*.relation gates) at kΔx = 1e-4."}});
 }
 
 }  // namespace

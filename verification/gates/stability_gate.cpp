@@ -54,7 +54,8 @@ std::string g17(double v) {
 std::string dim_name(int D) { return std::to_string(D) + "d"; }
 // A plate/bar/block with Δx = 1 mm, the left end fixed and the right end pulled
 // by a traction ramp (so a run has energy even when it starts at rest).
-std::string loaded_scene(const std::string& model, int D, double E, double sigma, double ramp, const std::string& time) {
+std::string loaded_scene(const std::string& model, int D, double E, double sigma, double ramp,
+                         const std::string& time) {
   const double dx = 1e-3;
   const int n[3] = {D == 1 ? 40 : D == 2 ? 20 : 10, 10, 6};
   std::string lo = "[0", hi = "[" + g17(n[0] * dx), left_hi = "[" + g17(dx), right_lo = "[" + g17((n[0] - 1) * dx);
@@ -62,8 +63,8 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
     lo += ", 0", hi += ", " + g17(n[a] * dx), left_hi += ", " + g17(n[a] * dx), right_lo += ", 0";
   }
   lo += "]", hi += "]", left_hi += "]", right_lo += "]";
-  std::string s = "[scene]\nid = \"stability_" + model + "_" + dim_name(D) + "\"\n[discretization]\ndimension = " +
-                  std::to_string(D) + "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
+  std::string s = "[scene]\nid = \"stability_" + model + "_" + dim_name(D) +
+      "\"\n[discretization]\ndimension = " + std::to_string(D) + "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
   if (D == 1) s += "area = 1e-6\n";
   s += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
@@ -74,10 +75,10 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
   std::string value = "[\"" + g17(sigma) + " * min(t / " + g17(ramp) + ", 1)\"";
   for (int a = 1; a < D; ++a) value += ", 0";
   value += "]";
-  s += "[[boundary]]\nname = \"left\"\nkind = \"fixed\"\nregion = { type = \"box\", min = " + lo + ", max = " +
-       left_hi + " }\n";
+  s += "[[boundary]]\nname = \"left\"\nkind = \"fixed\"\nregion = { type = \"box\", min = " + lo +
+      ", max = " + left_hi + " }\n";
   s += "[[boundary]]\nname = \"right\"\nkind = \"traction\"\nregion = { type = \"box\", min = " + right_lo +
-       ", max = " + hi + " }\nvalue = " + value + "\n";
+      ", max = " + hi + " }\nvalue = " + value + "\n";
   return s;
 }
 
@@ -91,12 +92,10 @@ void bounded_at_09() {
     std::string shape = D == 2 ? "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [0.016, 0.012]\n"
                                : "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [0.007, 0.006, 0.006]\n";
     std::string text = "[scene]\nid = \"bounded\"\n[discretization]\ndimension = " + std::to_string(D) +
-                       "\nspacing = 1e-3\nhorizon_ratio = 3.015\n" +
-                       (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
-                       "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n" +
-                       (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") +
-                       test::elastic_range_keys(model) + "[model]\ntype = \"" + model +
-                       "\"\n[time]\nsteps = 1\n";
+        "\nspacing = 1e-3\nhorizon_ratio = 3.015\n" + (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
+        "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n" +
+        (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") + test::elastic_range_keys(model) +
+        "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";
     auto setup = sim::build_pd<D>(io::parse_scene_text(text, "bounded"));
     auto& p = setup.system.particles;
     std::mt19937 rng(12345);
@@ -124,17 +123,23 @@ void bounded_at_09() {
       idev = std::max(idev, std::abs(e - shadow() - I0) / E0);
       if (k % 25 == 0) ts.push_back(stepper.time()), es.push_back(e / E0);
     }
-    test::record_gate({.id = "stability.bounded_0.9." + model + "." + dim_name(D),
-                       .claim = "At 0.9 × the Lanczos stable step, from a random initial velocity (all modes), the total "
-                       "energy shall stay below E₀/(1 − 0.9²) over 10⁴ Verlet steps (" +
-                           model + ", " + dim_name(D) + "; measured: max E/E₀)",
-                       .measured = emax, .expected = 1.0 / (1.0 - q), .tolerance = 0.0, .compare = test::Compare::at_most,
-                       .tolerance_reason = "For the linear system Verlet conserves I_h = E − (Δt²/8)ΣV|f|²/ρ and (Δt²/8)ΣV|f|²/ρ ≤ "
-                       "(λ_max Δt²/4) U = q U with q = 0.81 at 0.9 × Δt_crit, so (1 − q)E ≤ I_h = E₀ (u₀ = 0). "
-                       "The bound is reached only if all energy sits in the top mode as strain energy; an unstable "
-                       "step would grow without bound. Strains ≈ 1e-6 keep the body linear.",
-                       .source = "[hairer2006] §IX; Lanczos estimate of solver/time/stable_step.hpp", .unit = "",
-                       .problem = "stability"});
+    test::record_gate(
+        {.id = "stability.bounded_0.9." + model + "." + dim_name(D),
+         .claim = "At 0.9 × the Lanczos stable step, from a random initial velocity (all modes), the total "
+                  "energy shall stay below E₀/(1 − 0.9²) over 10⁴ Verlet steps (" +
+             model + ", " + dim_name(D) + "; measured: max E/E₀)",
+         .measured = emax,
+         .expected = 1.0 / (1.0 - q),
+         .tolerance = 0.0,
+         .compare = test::Compare::at_most,
+         .tolerance_reason =
+             "For the linear system Verlet conserves I_h = E − (Δt²/8)ΣV|f|²/ρ and (Δt²/8)ΣV|f|²/ρ ≤ "
+             "(λ_max Δt²/4) U = q U with q = 0.81 at 0.9 × Δt_crit, so (1 − q)E ≤ I_h = E₀ (u₀ = 0). "
+             "The bound is reached only if all energy sits in the top mode as strain energy; an unstable "
+             "step would grow without bound. Strains ≈ 1e-6 keep the body linear.",
+         .source = "[hairer2006] §IX; Lanczos estimate of solver/time/stable_step.hpp",
+         .unit = "",
+         .problem = "stability"});
     rows.push_back({model, dim_name(D), p.n_real, lz.dt, lz.iterations, dt, emax, 1.0 / (1.0 - q), idev});
     test::record_data("stability", "bounded_plot_" + model + "_" + dim_name(D),
                       {{"kind", "plot"},
@@ -149,8 +154,8 @@ void bounded_at_09() {
                     {{"kind", "table"},
                      {"title", "10⁴ steps at 0.9 × Lanczos stable step, " + dim_name(D)},
                      {"columns",
-                      {"model", "dim", "particles", "Lanczos Δt_crit [s]", "Lanczos iterations", "Δt [s]",
-                       "max E/E₀", "bound 1/(1 − 0.81)", "max |I_h − I_h(0)|/E₀"}},
+                      {"model", "dim", "particles", "Lanczos Δt_crit [s]", "Lanczos iterations", "Δt [s]", "max E/E₀",
+                       "bound 1/(1 − 0.81)", "max |I_h − I_h(0)|/E₀"}},
                      {"rows", rows},
                      {"caption",
                       "Free plate 16 × 12 mm (plane stress) / block 7 × 6 × 6 mm, Δx = 1 mm, m = 3.015, uniform "
@@ -181,52 +186,75 @@ void unstable_at_15(json& rows) {
       const fs::path dir = scratch.path();
       std::ofstream(dir / "scene.toml") << text;
       const auto r = test::run_pdmpm("run " + (dir / "scene.toml").string() + " --out " + (dir / "out").string() +
-                             " --quiet --no-fields --threads 1");
+                                     " --quiet --no-fields --threads 1");
       std::smatch m;
-      const std::regex pattern(R"(unstable at step (\d+) .*Time step ([0-9.eE+-]+) s; stable-step estimate ([0-9.eE+-]+) s \((Lanczos|Silling–Askari)\))");
+      const std::regex pattern(
+          R"(unstable at step (\d+) .*Time step ([0-9.eE+-]+) s; stable-step estimate ([0-9.eE+-]+) s \((Lanczos|Silling–Askari)\))");
       const bool found = std::regex_search(r.output, m, pattern);
       const double printed_estimate = found ? std::stod(m[3].str()) : 0.0;
       const double in_process = estimate == "lanczos" ? dt_l : dt_sa;
       if (estimate == "lanczos") {
-        test::record_gate({.id = "stability.unstable_1.5." + tag,
-                           .claim = "`pdmpm run` with stable_step = \"lanczos\" and safety_factor = 1.5 shall stop with exit "
-                           "status 3 (" +
-                               model + ", " + dim_name(D) + "; measured: exit status)",
-                           .measured = static_cast<double>(r.status), .expected = 3.0, .tolerance = 0.0, .compare = test::Compare::abs,
-                           .tolerance_reason = "An exit status is exact. At 1.5 × Δt_crit the top mode grows by |z| ≈ 6.9 per step "
-                           "(z² + 7z + 1 = 0), so the energy check stops the run within a few tens of steps.",
-                           .source = "[pdmpm] docs/design.md (unstable runs stop with a message); README exit statuses", .unit = "", .problem = "stability"});
+        test::record_gate(
+            {.id = "stability.unstable_1.5." + tag,
+             .claim = "`pdmpm run` with stable_step = \"lanczos\" and safety_factor = 1.5 shall stop with exit "
+                      "status 3 (" +
+                 model + ", " + dim_name(D) + "; measured: exit status)",
+             .measured = static_cast<double>(r.status),
+             .expected = 3.0,
+             .tolerance = 0.0,
+             .compare = test::Compare::abs,
+             .tolerance_reason = "An exit status is exact. At 1.5 × Δt_crit the top mode grows by |z| ≈ 6.9 per step "
+                                 "(z² + 7z + 1 = 0), so the energy check stops the run within a few tens of steps.",
+             .source = "[pdmpm] docs/design.md (unstable runs stop with a message); README exit statuses",
+             .unit = "",
+             .problem = "stability"});
         test::record_gate({.id = "stability.unstable_message." + tag,
                            .claim = "The message of that run shall name the step and the stable-step estimate, and the "
-                           "estimate printed shall be the Lanczos step of the scene (" +
+                                    "estimate printed shall be the Lanczos step of the scene (" +
                                model + ", " + dim_name(D) + "; measured: |printed/in-process − 1|, 1 if absent)",
-                           .measured = found ? std::abs(printed_estimate / in_process - 1.0) : 1.0, .expected = 0.0, .tolerance = 1e-5, .compare = test::Compare::abs,
+                           .measured = found ? std::abs(printed_estimate / in_process - 1.0) : 1.0,
+                           .expected = 0.0,
+                           .tolerance = 1e-5,
+                           .compare = test::Compare::abs,
                            .tolerance_reason = "The message prints 6 significant digits: relative rounding ≤ 5e-6.",
-                           .source = "[pdmpm] docs/design.md; solver/sim/pd_run.cpp stable()", .unit = "", .problem = "stability"});
+                           .source = "[pdmpm] docs/design.md; solver/sim/pd_run.cpp stable()",
+                           .unit = "",
+                           .problem = "stability"});
       } else {
         test::record_gate({.id = "stability.silling_askari_conservative." + tag,
                            .claim = "The Silling–Askari step shall not exceed the Lanczos step (" + model + ", " +
                                dim_name(D) + "; measured: Lanczos/S&A)",
-                           .measured = ratio, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::at_least,
-                           .tolerance_reason = "S&A is a Gershgorin-type bound on λ_max, so it can only underestimate the step; "
-                           "Lanczos Ritz values approach λ_max from below, so its step can only overestimate. "
-                           "Ratio ≥ 1 is the definition, no slack.",
-                           .source = "[silling-askari2005]; solver/time/stable_step.hpp", .unit = "", .problem = "stability"});
+                           .measured = ratio,
+                           .expected = 1.0,
+                           .tolerance = 0.0,
+                           .compare = test::Compare::at_least,
+                           .tolerance_reason =
+                               "S&A is a Gershgorin-type bound on λ_max, so it can only underestimate the step; "
+                               "Lanczos Ritz values approach λ_max from below, so its step can only overestimate. "
+                               "Ratio ≥ 1 is the definition, no slack.",
+                           .source = "[silling-askari2005]; solver/time/stable_step.hpp",
+                           .unit = "",
+                           .problem = "stability"});
         // S&A is a lower bound of the true step: 1.5 × S&A is unstable only when Lanczos/S&A < 1.5.
         const int expected = ratio > 1.5 ? 0 : 3;
-        test::record_gate({.id = "stability.silling_askari_1.5." + tag,
-                           .claim = "With stable_step = \"silling_askari\" and safety_factor = 1.5 the run shall complete if "
-                           "Lanczos/S&A > 1.5 and stop with exit status 3 otherwise (" +
-                               model + ", " + dim_name(D) + ": Lanczos/S&A = " + std::to_string(ratio) +
-                               ", so expected " + std::to_string(expected) + "; measured: exit status)",
-                           .measured = static_cast<double>(r.status), .expected = static_cast<double>(expected), .tolerance = 0.0, .compare = test::Compare::abs,
-                           .tolerance_reason = "Exact: an exit status. The ratio is far enough from 1.5 here for the growth (or its "
-                           "absence) to be unambiguous within 400 steps (see the table).",
-                           .source = "[silling-askari2005] (Gershgorin-type bound, never above the true limit)", .unit = "",
-                           .problem = "stability"});
+        test::record_gate(
+            {.id = "stability.silling_askari_1.5." + tag,
+             .claim = "With stable_step = \"silling_askari\" and safety_factor = 1.5 the run shall complete if "
+                      "Lanczos/S&A > 1.5 and stop with exit status 3 otherwise (" +
+                 model + ", " + dim_name(D) + ": Lanczos/S&A = " + std::to_string(ratio) + ", so expected " +
+                 std::to_string(expected) + "; measured: exit status)",
+             .measured = static_cast<double>(r.status),
+             .expected = static_cast<double>(expected),
+             .tolerance = 0.0,
+             .compare = test::Compare::abs,
+             .tolerance_reason = "Exact: an exit status. The ratio is far enough from 1.5 here for the growth (or its "
+                                 "absence) to be unambiguous within 400 steps (see the table).",
+             .source = "[silling-askari2005] (Gershgorin-type bound, never above the true limit)",
+             .unit = "",
+             .problem = "stability"});
       }
-      rows.push_back({model, dim_name(D), estimate, dt_sa, dt_l, ratio, r.status,
-                      found ? m[1].str() : std::string("—"), found ? printed_estimate : 0.0});
+      rows.push_back({model, dim_name(D), estimate, dt_sa, dt_l, ratio, r.status, found ? m[1].str() : std::string("—"),
+                      found ? printed_estimate : 0.0});
     }
   }
 }
@@ -265,7 +293,7 @@ void lps_patch(const test::PatchConfig& cfg, Worst& force, Worst& rotation, Wors
                json& rows) {
   test::PatchBlock<D> block(cfg);
   const std::string where = std::string(name(cfg.setting)) + ", ω = " + std::string(name(cfg.influence)) +
-                            ", ν = " + g17(cfg.material.nu) + ", m = " + g17(cfg.horizon_ratio);
+      ", ν = " + g17(cfg.material.nu) + ", m = " + g17(cfg.horizon_ratio);
   Eigen::Matrix3d mixed;
   mixed << 1.0, 0.4, -0.3, -0.2, -0.7, 0.5, 0.6, 0.1, 0.9;
   const Eigen::Matrix3d iso_H = Eigen::Matrix3d::Identity();
@@ -280,8 +308,8 @@ void lps_patch(const test::PatchConfig& cfg, Worst& force, Worst& rotation, Wors
         if (field == "isotropic") iso.take(std::abs(r.energy_error), where);
       }
       rows.push_back({std::string(name(cfg.setting)), std::string(name(cfg.influence)), cfg.material.nu,
-                      cfg.horizon_ratio, field, a, r.interior, r.interior_force, a < 1e-3 ? json(r.theta_error) : json(nullptr),
-                      a < 1e-3 ? json(r.energy_error) : json(nullptr)});
+                      cfg.horizon_ratio, field, a, r.interior, r.interior_force,
+                      a < 1e-3 ? json(r.theta_error) : json(nullptr), a < 1e-3 ? json(r.energy_error) : json(nullptr)});
     }
   }
   if constexpr (D > 1) {
@@ -303,26 +331,69 @@ void record_lps_extreme(const std::string& tag, const std::string& what, const W
   const bool big = tag.find("m8") != std::string::npos;
   const double tol = big ? 1e-11 : 1e-12;
   test::record_gate({.id = "stability." + tag + ".affine_force",
-                     .claim = "LPS at " + what + ": affine fields (isotropic, mixed; |H| = 1e-7, 0.3) shall give zero interior "
-                     "force relative to M|H|/Δx (worst: " + force.where + ")",
-                     .measured = force.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+                     .claim = "LPS at " + what +
+                         ": affine fields (isotropic, mixed; |H| = 1e-7, 0.3) shall give zero interior "
+                         "force relative to M|H|/Δx (worst: " +
+                         force.where + ")",
+                     .measured = force.value,
+                     .expected = 0.0,
+                     .tolerance = tol,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = reason,
+                     .source = src,
+                     .unit = "",
+                     .problem = "stability"});
   if (!rotation.where.empty())
     test::record_gate({.id = "stability." + tag + ".rotation_force",
-                       .claim = "LPS at " + what + ": rigid rotations by 30°, 90°, 180° shall give zero force at every "
-                       "particle (worst: " + rotation.where + ")",
-                       .measured = rotation.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
-  test::record_gate({.id = "stability." + tag + ".dilatation",
-                     .claim = "LPS at " + what + ": θ (±H symmetrised) shall equal tr ε relative to |H| (worst: " +
-                         theta.where + ")",
-                     .measured = theta.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+                       .claim = "LPS at " + what +
+                           ": rigid rotations by 30°, 90°, 180° shall give zero force at every "
+                           "particle (worst: " +
+                           rotation.where + ")",
+                       .measured = rotation.value,
+                       .expected = 0.0,
+                       .tolerance = tol,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason = reason,
+                       .source = src,
+                       .unit = "",
+                       .problem = "stability"});
+  test::record_gate(
+      {.id = "stability." + tag + ".dilatation",
+       .claim = "LPS at " + what + ": θ (±H symmetrised) shall equal tr ε relative to |H| (worst: " + theta.where + ")",
+       .measured = theta.value,
+       .expected = 0.0,
+       .tolerance = tol,
+       .compare = test::Compare::abs,
+       .tolerance_reason = reason,
+       .source = src,
+       .unit = "",
+       .problem = "stability"});
   test::record_gate({.id = "stability." + tag + ".energy_isotropic",
-                     .claim = "LPS at " + what + ": the isotropic-expansion energy density shall equal the classical one to "
-                     "rounding (worst: " + iso.where + ")",
-                     .measured = iso.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+                     .claim = "LPS at " + what +
+                         ": the isotropic-expansion energy density shall equal the classical one to "
+                         "rounding (worst: " +
+                         iso.where + ")",
+                     .measured = iso.value,
+                     .expected = 0.0,
+                     .tolerance = tol,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = reason,
+                     .source = src,
+                     .unit = "",
+                     .problem = "stability"});
   test::record_gate({.id = "stability." + tag + ".energy_lattice",
-                     .claim = "LPS at " + what + ": the energy density shall equal its linear lattice prediction, relative to "
-                     "the classical W (worst: " + lattice.where + ")",
-                     .measured = lattice.value, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = src, .unit = "", .problem = "stability"});
+                     .claim = "LPS at " + what +
+                         ": the energy density shall equal its linear lattice prediction, relative to "
+                         "the classical W (worst: " +
+                         lattice.where + ")",
+                     .measured = lattice.value,
+                     .expected = 0.0,
+                     .tolerance = tol,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = reason,
+                     .source = src,
+                     .unit = "",
+                     .problem = "stability"});
 }
 
 TEST(FastStability, LpsPatchAtExtremePoissonRatios) {
@@ -379,16 +450,18 @@ TEST(FastStability, LpsPatchAtSmallAndLargeHorizon) {
     lps_horizon<2>(1.5, core::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
     lps_horizon<2>(1.5, core::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
     lps_horizon<3>(1.5, core::Setting::solid3d, rows, force, rotation, theta, iso, lattice, false);
-    record_lps_extreme("lps_horizon_m1.5", "m = 1.5 (1D, plane stress, plane strain, 3D; ω = 1, quadratic, δ/r)",
-                       force, rotation, theta, iso, lattice);
+    record_lps_extreme("lps_horizon_m1.5", "m = 1.5 (1D, plane stress, plane strain, 3D; ω = 1, quadratic, δ/r)", force,
+                       rotation, theta, iso, lattice);
   }
   {
     Worst force, rotation, theta, iso, lattice;
     lps_horizon<1>(8.0, core::Setting::bar1d, rows, force, rotation, theta, iso, lattice, false);
     lps_horizon<2>(8.0, core::Setting::plane_stress, rows, force, rotation, theta, iso, lattice, false);
     lps_horizon<2>(8.0, core::Setting::plane_strain, rows, force, rotation, theta, iso, lattice, false);
-    record_lps_extreme("lps_horizon_m8", "m = 8 (1D, plane stress, plane strain; ω = 1, quadratic, δ/r; 3D in the "
-                       "full tier)", force, rotation, theta, iso, lattice);
+    record_lps_extreme("lps_horizon_m8",
+                       "m = 8 (1D, plane stress, plane strain; ω = 1, quadratic, δ/r; 3D in the "
+                       "full tier)",
+                       force, rotation, theta, iso, lattice);
   }
   test::record_data("stability", "lps_horizon",
                     {{"kind", "table"},
@@ -478,8 +551,10 @@ void two_particles(const std::string& model, core::Setting s, json& rows, double
     r.push_back(sys.particles.u[1][0] - sys.particles.u[0][0]);
     // velocity Verlet collapsed to position Verlet with v₀ = 0
     for (Index i = 0; i < 2; ++i) {
-      if (n == 0) sys.particles.v[i] = 0.5 * h * sys.particles.f[i] / rho;
-      else sys.particles.v[i] += h * sys.particles.f[i] / rho;
+      if (n == 0)
+        sys.particles.v[i] = 0.5 * h * sys.particles.f[i] / rho;
+      else
+        sys.particles.v[i] += h * sys.particles.f[i] / rho;
     }
     for (Index i = 0; i < 2; ++i) sys.particles.u[i] += h * sys.particles.v[i];
   }
@@ -535,14 +610,20 @@ TEST(FastStability, DegenerateBodies) {
   } catch (const InputError& e) {
     scene_refuses = std::string(e.what()).find("no particle has a bond") != std::string::npos;
   }
-  rows.push_back({"one particle, pdmpm run", "pmb", scene_refuses ? "InputError: no particle has a bond" : "ran",
-                  "—", "—"});
+  rows.push_back(
+      {"one particle, pdmpm run", "pmb", scene_refuses ? "InputError: no particle has a bond" : "ran", "—", "—"});
   test::record_gate({.id = "stability.degenerate.one_particle",
-                     .claim = "A single particle (no bond) shall give zero, finite force, energy and θ for every model, an "
-                     "infinite S&A step, a RunError from Lanczos, and a run shall be refused with an InputError "
-                     "naming the cause (measured: 1 if all hold)",
-                     .measured = single_ok && scene_refuses ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::abs,
-                     .tolerance_reason = "A yes/no property.", .source = "[pdmpm] docs/design.md (bad input is an error, not a crash or a NaN)", .unit = "",
+                     .claim =
+                         "A single particle (no bond) shall give zero, finite force, energy and θ for every model, an "
+                         "infinite S&A step, a RunError from Lanczos, and a run shall be refused with an InputError "
+                         "naming the cause (measured: 1 if all hold)",
+                     .measured = single_ok && scene_refuses ? 1.0 : 0.0,
+                     .expected = 1.0,
+                     .tolerance = 0.0,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = "A yes/no property.",
+                     .source = "[pdmpm] docs/design.md (bad input is an error, not a crash or a NaN)",
+                     .unit = "",
                      .problem = "stability"});
 
   // Two particles: an oscillator with a closed-form frequency; Lanczos finds the same λ.
@@ -556,22 +637,35 @@ TEST(FastStability, DegenerateBodies) {
     two_particles<3>(model, core::Setting::solid3d, pair_rows, worst_freq, worst_lanczos, finite);
   }
   EXPECT_TRUE(finite);
-  test::record_gate({.id = "stability.degenerate.two_particles_frequency",
-                     .claim = "Two particles Δx apart shall oscillate with the closed-form frequency ω² = 2cV/(ρΔx) (PMB) "
-                     "or 4(A d + B)/(ρΔx²) (LPS) in every setting (measured: worst |ω²_Verlet/ω² − 1|)",
-                     .measured = worst_freq, .expected = 0.0, .tolerance = 1e-9, .compare = test::Compare::abs,
-                     .tolerance_reason = "The Verlet recurrence r_{n+1} − 2r_n + r_{n−1} = −ω²Δt² r_n is exact for a linear oscillator; "
-                     "the amplitude 1e-12 m (strain 1e-9) leaves a nonlinear relative error ~1e-9 at most and the "
-                     "second difference loses ~1e-13 to cancellation.",
-                     .source = "[pdmpm] derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)", .unit = "",
-                     .problem = "stability"});
+  test::record_gate(
+      {.id = "stability.degenerate.two_particles_frequency",
+       .claim = "Two particles Δx apart shall oscillate with the closed-form frequency ω² = 2cV/(ρΔx) (PMB) "
+                "or 4(A d + B)/(ρΔx²) (LPS) in every setting (measured: worst |ω²_Verlet/ω² − 1|)",
+       .measured = worst_freq,
+       .expected = 0.0,
+       .tolerance = 1e-9,
+       .compare = test::Compare::abs,
+       .tolerance_reason =
+           "The Verlet recurrence r_{n+1} − 2r_n + r_{n−1} = −ω²Δt² r_n is exact for a linear oscillator; "
+           "the amplitude 1e-12 m (strain 1e-9) leaves a nonlinear relative error ~1e-9 at most and the "
+           "second difference loses ~1e-13 to cancellation.",
+       .source = "[pdmpm] derivation in stability_gate.cpp (pair force of pmb.cpp / lps.cpp with one bond)",
+       .unit = "",
+       .problem = "stability"});
   test::record_gate({.id = "stability.degenerate.two_particles_lanczos",
-                     .claim = "For two particles the Lanczos estimate shall find λ_max = ω² of the pair (measured: worst "
-                     "|λ/ω² − 1|)",
-                     .measured = worst_lanczos, .expected = 0.0, .tolerance = 1e-6, .compare = test::Compare::abs,
-                     .tolerance_reason = "λ_max is the only non-zero eigenvalue; the Lanczos operator is a finite difference at strain "
-                     "1e-7, whose nonlinear error is ~1e-7 relative.",
-                     .source = "[silling-askari2005]; solver/time/stable_step.cpp", .unit = "", .problem = "stability"});
+                     .claim =
+                         "For two particles the Lanczos estimate shall find λ_max = ω² of the pair (measured: worst "
+                         "|λ/ω² − 1|)",
+                     .measured = worst_lanczos,
+                     .expected = 0.0,
+                     .tolerance = 1e-6,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason =
+                         "λ_max is the only non-zero eigenvalue; the Lanczos operator is a finite difference at strain "
+                         "1e-7, whose nonlinear error is ~1e-7 relative.",
+                     .source = "[silling-askari2005]; solver/time/stable_step.cpp",
+                     .unit = "",
+                     .problem = "stability"});
 
   // Empty family: one particle of a block loses all its bonds (both sides).
   bool empty_ok = true;
@@ -600,17 +694,24 @@ TEST(FastStability, DegenerateBodies) {
     m->compute_forces(sys, req);
     m->dilatation(sys, theta);
     const auto phi = pd::local_damage(sys);
-    const bool ok = all_finite(sys, W, theta) && sys.particles.f[k].norm() == 0.0 && W[k] == 0.0 &&
-                    theta[k] == 0.0 && phi[k] == 1.0 && std::isfinite(time::silling_askari_step<2>(sys, *m));
+    const bool ok = all_finite(sys, W, theta) && sys.particles.f[k].norm() == 0.0 && W[k] == 0.0 && theta[k] == 0.0 &&
+        phi[k] == 1.0 && std::isfinite(time::silling_askari_step<2>(sys, *m));
     empty_ok = empty_ok && ok;
     rows.push_back({"empty family (all bonds of one particle broken)", model,
                     ok ? "f = 0, W = 0, θ = 0, φ = 1; all other values finite" : "FAILED", "finite", "—"});
   }
-  test::record_gate({.id = "stability.degenerate.empty_family",
-                     .claim = "A particle whose bonds are all broken shall get zero force, energy and θ, damage 1, and every "
-                     "other value shall stay finite (measured: 1 if all hold)",
-                     .measured = empty_ok ? 1.0 : 0.0, .expected = 1.0, .tolerance = 0.0, .compare = test::Compare::abs, .tolerance_reason = "A yes/no property.",
-                     .source = "[pdmpm] docs/design.md (no crash, no NaN); docs/models/pmb.md (damage)", .unit = "", .problem = "stability"});
+  test::record_gate(
+      {.id = "stability.degenerate.empty_family",
+       .claim = "A particle whose bonds are all broken shall get zero force, energy and θ, damage 1, and every "
+                "other value shall stay finite (measured: 1 if all hold)",
+       .measured = empty_ok ? 1.0 : 0.0,
+       .expected = 1.0,
+       .tolerance = 0.0,
+       .compare = test::Compare::abs,
+       .tolerance_reason = "A yes/no property.",
+       .source = "[pdmpm] docs/design.md (no crash, no NaN); docs/models/pmb.md (damage)",
+       .unit = "",
+       .problem = "stability"});
   test::record_data("stability", "degenerate",
                     {{"kind", "table"},
                      {"title", "Degenerate bodies"},
@@ -662,25 +763,35 @@ TEST(FastStability, StiffAndSoftMaterialsScale) {
       worst = std::max(worst, d / umax);
       rows.push_back({model, E, 1e-4 * E, 2e-6 * std::sqrt(200e9 / E), dt_ref * std::sqrt(200e9 / E), d / umax});
     }
-    test::record_gate({.id = "stability.scaling." + model,
-                       .claim = "A very soft (E = 1 Pa) and a very stiff (E = 1e15 Pa) plate under the same load history "
-                       "scaled with E (σ = 1e-4 E) and in time (t ∝ 1/√E) shall give the same u·E/σ as E = 200 GPa "
-                       "(" + model + ", plane stress, 300 steps; measured: max |Δ(uE/σ)| / max |uE/σ|)",
-                       .measured = worst, .expected = 0.0, .tolerance = 1e-10, .compare = test::Compare::abs,
-                       .tolerance_reason = "In units of Δx, √(E/ρ) and σ/E the discrete equations are identical; only the rounding of "
-                       "products with E differs, a few u per operation, amplified by the 300 steps of an oscillating "
-                       "system (≤ steps × ~100u ≈ 3e-12 in practice). 1e-10 separates rounding from any "
-                       "E-dependent term (e.g. an absolute tolerance), which would be O(1) at E = 1 or 1e15.",
-                       .source = "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/conservation_stability.md)", .unit = "", .problem = "stability"});
+    test::record_gate(
+        {.id = "stability.scaling." + model,
+         .claim = "A very soft (E = 1 Pa) and a very stiff (E = 1e15 Pa) plate under the same load history "
+                  "scaled with E (σ = 1e-4 E) and in time (t ∝ 1/√E) shall give the same u·E/σ as E = 200 GPa "
+                  "(" +
+             model + ", plane stress, 300 steps; measured: max |Δ(uE/σ)| / max |uE/σ|)",
+         .measured = worst,
+         .expected = 0.0,
+         .tolerance = 1e-10,
+         .compare = test::Compare::abs,
+         .tolerance_reason =
+             "In units of Δx, √(E/ρ) and σ/E the discrete equations are identical; only the rounding of "
+             "products with E differs, a few u per operation, amplified by the 300 steps of an oscillating "
+             "system (≤ steps × ~100u ≈ 3e-12 in practice). 1e-10 separates rounding from any "
+             "E-dependent term (e.g. an absolute tolerance), which would be O(1) at E = 1 or 1e15.",
+         .source =
+             "[pdmpm] dimensional analysis of ρü = f(u; E) with f ∝ E (docs/verification/conservation_stability.md)",
+         .unit = "",
+         .problem = "stability"});
   }
-  test::record_data("stability", "scaling",
-                    {{"kind", "table"},
-                     {"title", "Stiff and soft materials, scaled load and time"},
-                     {"columns", {"model", "E [Pa]", "σ [Pa]", "ramp time [s]", "Δt [s]", "max |Δ(uE/σ)| / max |uE/σ|"}},
-                     {"rows", rows},
-                     {"caption",
-                      "Plane-stress plate 20 × 10 mm, left end fixed, right end traction σ·min(t/t_r, 1), 300 Verlet "
-                      "steps; reference E = 200 GPa, σ = 2e7 Pa, t_r = 2 µs, Δt = 0.8 × S&A."}});
+  test::record_data(
+      "stability", "scaling",
+      {{"kind", "table"},
+       {"title", "Stiff and soft materials, scaled load and time"},
+       {"columns", {"model", "E [Pa]", "σ [Pa]", "ramp time [s]", "Δt [s]", "max |Δ(uE/σ)| / max |uE/σ|"}},
+       {"rows", rows},
+       {"caption",
+        "Plane-stress plate 20 × 10 mm, left end fixed, right end traction σ·min(t/t_r, 1), 300 Verlet "
+        "steps; reference E = 200 GPa, σ = 2e7 Pa, t_r = 2 µs, Δt = 0.8 × S&A."}});
 }
 
 }  // namespace
