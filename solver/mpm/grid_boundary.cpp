@@ -104,20 +104,40 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
       const Index i = nodes_[b][n];
       const Vec<D> before = v[i];
       switch (bc.kind) {
-        case BcKind::fixed: v[i].setZero(); break;
-        case BcKind::roller: v[i][bc.axis] = 0.0; break;
-        case BcKind::velocity:
-          {
-            const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
-            for (int a = 0; a < D; ++a)
-              if (bc.components[a]) v[i][a] = r * target[a];
-          }
+        case BcKind::fixed:
+          v[i].setZero();
           break;
-        case BcKind::symmetry: break;
+        case BcKind::roller:
+          v[i][bc.axis] = 0.0;
+          break;
+        case BcKind::velocity: {
+          const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+          for (int a = 0; a < D; ++a)
+            if (bc.components[a]) v[i][a] = r * target[a];
+        } break;
+        case BcKind::symmetry:
+          break;
       }
       if (reactions && mass && dt > 0.0) (*reactions)[b] += real_share(i) * (*mass)[i] * (v[i] - before) / dt;
     }
   }
+}
+
+template <int D>
+double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t) const {
+  double power = 0.0;
+  for (std::size_t b = 0; b < bcs_.size(); ++b) {
+    const GridBc<D>& bc = bcs_[b];
+    if (bc.kind != BcKind::velocity) continue;  // fixed, roller and symmetry do no work
+    const double r = ramp(t, bc.ramp_time);
+    for (std::size_t n = 0; n < nodes_[b].size(); ++n) {
+      const Index i = nodes_[b][n];
+      const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+      for (int a = 0; a < D; ++a)
+        if (bc.components[a]) power -= real_share(i) * f[i][a] * r * target[a];
+    }
+  }
+  return power;
 }
 
 template class GridBoundary<1>;

@@ -35,6 +35,10 @@ class GridBoundary {
   void constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr, double dt = 0.0,
                  std::vector<Vec<D>>* reactions = nullptr) const;
 
+  // Power of the velocity constraints at time t against nodal forces f (the reaction
+  // −f on each constrained component, times the prescribed velocity; real share only).
+  double constraint_power(const std::vector<Vec<D>>& f, double t) const;
+
   // Share of a node's (folded) mass and force that belongs to the real body: ½ on a
   // symmetry plane (the mirror image holds the other half), ¼ where two planes meet.
   // Reactions and work sums use it so mirror images are not counted.
@@ -49,11 +53,11 @@ class GridBoundary {
     int axis;
   };
   std::vector<GridBc<D>> bcs_;
-  std::vector<std::vector<Index>> nodes_;        // per velocity-type bc: constrained nodes
-  std::vector<std::vector<Vec<D>>> positions_;   // per bc: positions of its nodes
-  std::vector<std::vector<MirrorPair>> pairs_;   // per symmetry plane, applied in order
+  std::vector<std::vector<Index>> nodes_;                        // per velocity-type bc: constrained nodes
+  std::vector<std::vector<Vec<D>>> positions_;                   // per bc: positions of its nodes
+  std::vector<std::vector<MirrorPair>> pairs_;                   // per symmetry plane, applied in order
   std::vector<std::pair<std::vector<Index>, int>> plane_nodes_;  // per symmetry plane: nodes on it, axis
-  std::vector<double> share_;                    // real_share per node (empty: all 1)
+  std::vector<double> share_;                                    // real_share per node (empty: all 1)
 };
 
 }  // namespace pdmpm::mpm

@@ -9,19 +9,26 @@ namespace pdmpm::mpm {
 
 namespace {
 
-// ln of a symmetric positive definite 2×2 matrix without dividing by a small
-// eigenvalue gap: ln U = ½ ln(det U) I + q (U − m I), q = (ln λ₁ − ln λ₂)/(λ₁ − λ₂).
-Mat<2> log_spd2(const Mat<2>& U) {
+// atanh(x)/x for 0 ≤ x < 1. Below 0.1 (strains under ~10 %, every step of a metal
+// body) its Taylor series 1 + x²/3 + x⁴/5 + … to x¹⁴ is exact to round-off (the
+// first term left out, x¹⁶/17, is < 6e-18) and costs no library call.
+double atanh_over_x(double x) {
+  if (x >= 0.1) return std::atanh(x) / x;
+  const double y = x * x;
+  return 1.0 + y * (1.0 / 3 + y * (1.0 / 5 + y * (1.0 / 7 + y * (1.0 / 9 + y * (1.0 / 11 + y * (1.0 / 13 + y / 15))))));
+}
+
+// ln of a symmetric positive definite 2×2 matrix U of determinant det_U without
+// dividing by a small eigenvalue gap: with eigenvalues m ± r,
+// ln U = ½ ln(det U) I + q (U − m I), q = (ln(m + r) − ln(m − r))/(2r) = atanh(r/m)/r.
+Mat<2> log_spd2(const Mat<2>& U, double det_U) {
   const double m = 0.5 * (U(0, 0) + U(1, 1));
   const double hd = 0.5 * (U(0, 0) - U(1, 1));
   const double b = 0.5 * (U(0, 1) + U(1, 0));
-  const double r = std::hypot(hd, b);
-  const double x = r / m;  // < 1 for positive definite U
-  // atanh(x)/x, with its series where the quotient would lose digits.
-  const double ratio = x < 1e-4 ? 1.0 + x * x / 3.0 : std::atanh(x) / x;
-  const double q = ratio / m;
+  const double r = std::sqrt(hd * hd + b * b);
+  const double q = atanh_over_x(r / m) / m;  // r/m < 1 for positive definite U
   Mat<2> out;
-  const double half_log_det = 0.5 * std::log((m - r) * (m + r));
+  const double half_log_det = 0.5 * std::log(det_U);
   out(0, 0) = half_log_det + q * hd;
   out(1, 1) = half_log_det - q * hd;
   out(0, 1) = out(1, 0) = q * b;
@@ -42,14 +49,16 @@ PolarLog<1> polar_log<1>(const Mat<1>& F) {
 template <>
 PolarLog<2> polar_log<2>(const Mat<2>& F) {
   if (!(F.determinant() > 0.0)) throw RunError("deformation gradient with det F ≤ 0 (particle inverted)");
-  // The rotation of a 2×2 polar decomposition is the one that makes RᵀF symmetric.
-  const double theta = std::atan2(F(1, 0) - F(0, 1), F(0, 0) + F(1, 1));
-  const double c = std::cos(theta), s = std::sin(theta);
+  // The rotation of a 2×2 polar decomposition is the one that makes RᵀF symmetric:
+  // R = [c −s; s c] with (c, s) ∥ (F₀₀ + F₁₁, F₁₀ − F₀₁) — a norm, no angle needed.
+  const double a = F(0, 0) + F(1, 1), b = F(1, 0) - F(0, 1);
+  const double inv = 1.0 / std::sqrt(a * a + b * b);
+  const double c = a * inv, s = b * inv;
   PolarLog<2> p;
   p.R << c, -s, s, c;
   Mat<2> U = p.R.transpose() * F;
   U = 0.5 * (U + U.transpose()).eval();
-  p.log_U = log_spd2(U);
+  p.log_U = log_spd2(U, F.determinant());  // det U = det F
   return p;
 }
 

@@ -545,6 +545,24 @@ Energies Simulation<D>::energies() const {
 }
 
 template <int D>
+double Simulation<D>::pending_boundary_work(double dt) const {
+  std::vector<Vec<D>> f(static_cast<std::size_t>(grid_.size()), Vec<D>::Zero());
+  const IVec<D> stride = grid_.stride;
+  for (Index p : active_) {
+    if (state_.failed[p]) continue;
+    const Stencil<D> st =
+        make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
+    bool inside = true;
+    for (int a = 0; a < D; ++a) inside = inside && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
+    if (!inside) continue;  // the next step reports it
+    const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
+    for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });
+  }
+  boundary_.fold(nullptr, &f);
+  return 0.5 * dt * boundary_.constraint_power(f, time_);
+}
+
+template <int D>
 Vec<D> Simulation<D>::momentum() const {
   const Index na = static_cast<Index>(active_.size());
   return deterministic_sum<Vec<D>>(na, Vec<D>::Zero(), [&](Index k) {

@@ -83,6 +83,14 @@ class Simulation {
   // Indices of the particles the MPM step integrates (kind mpm/transition, real).
   const std::vector<Index>& active() const { return active_; }
   Energies energies() const;
+  // Work the velocity constraints have done but the balance has not booked yet. The
+  // balance books a step's boundary work with the reaction of the stress at its start
+  // (explicit), while the stored energy already holds the step's deformation; the
+  // trapezoid rule would add ½ Δt R(tⁿ⁺¹)·V(tⁿ⁺¹). This returns that half step, from
+  // the internal forces of the current stress on the constrained nodes. Costs a
+  // particle pass: for the stability check when the booked work looks too small
+  // (a grip at full speed from t = 0 has done no booked work after its first step).
+  double pending_boundary_work(double dt) const;
   Vec<D> momentum() const;
   double total_mass() const;
   // Force each boundary exerted on the body during the last step (N; volumes carry
