@@ -84,6 +84,18 @@ class LpsPlastic final : public Model<D> {
   // σ̄_i of the last evaluation.
   double equivalent_stress(Index i) const { return sigma_eq_[i]; }
 
+  // The committed plastic state, read and written when the hybrid converts a particle
+  // between MPM and PD (solver/hybrid/plastic_state_transfer): p per bond side, q_p (2D)
+  // and ε̄_p per particle. The setters write trial and committed alike.
+  double plastic_extension(BondIndex b) const { return plastic_ext_.committed[b]; }
+  double axial_plastic_strain(Index i) const { return D == 2 ? axial_plastic_.committed[i] : 0.0; }
+  double committed_eq_plastic_strain(Index i) const { return eq_plastic_.committed[i]; }
+  void set_plastic_extension(BondIndex b, double p) { plastic_ext_.trial[b] = plastic_ext_.committed[b] = p; }
+  void set_particle_plastic_state(Index i, double q_p, double eq_plastic) {
+    if constexpr (D == 2) axial_plastic_.trial[i] = axial_plastic_.committed[i] = q_p;
+    eq_plastic_.trial[i] = eq_plastic_.committed[i] = eq_plastic;
+  }
+
  private:
   LpsCoefficients k_{};
   core::Setting setting_ = core::Setting::solid3d;

@@ -1,0 +1,121 @@
+#include "solver/hybrid/plastic_state_transfer.hpp"
+
+#include <Eigen/Dense>
+#include <cmath>
+
+namespace pdmpm::hybrid {
+
+namespace {
+
+// The deviatoric basis the fit solves for, as 3×3 tensors: 2D, the in-plane deviator
+// (diag(1, −1, 0), sym e₁⊗e₂); 3D, the five traceless symmetric directions.
+template <int D>
+std::vector<Mat<3>> deviatoric_basis() {
+  std::vector<Mat<3>> b;
+  auto sym = [](int i, int j) {
+    Mat<3> m = Mat<3>::Zero();
+    m(i, j) = m(j, i) = i == j ? 1.0 : 0.5;
+    return m;
+  };
+  if constexpr (D == 2) {
+    Mat<3> d = Mat<3>::Zero();
+    d(0, 0) = 1.0;
+    d(1, 1) = -1.0;
+    b = {d, 2.0 * sym(0, 1)};
+  } else {
+    Mat<3> d1 = Mat<3>::Zero(), d2 = Mat<3>::Zero();
+    d1(0, 0) = 1.0;
+    d1(1, 1) = -1.0;
+    d2(1, 1) = 1.0;
+    d2(2, 2) = -1.0;
+    b = {d1, d2, 2.0 * sym(0, 1), 2.0 * sym(1, 2), 2.0 * sym(0, 2)};
+  }
+  return b;
+}
+
+}  // namespace
+
+template <int D>
+double bond_plastic_extension(const Mat<3>& eps_p, const Vec<D>& xi) {
+  const double L = xi.norm();
+  Mat<D> e = eps_p.template topLeftCorner<D, D>();
+  if constexpr (D == 2) e -= 0.5 * e.trace() * Mat<D>::Identity();  // the bonds see the in-plane deviator
+  return xi.dot(e * xi) / L;
+}
+
+double axial_plastic_strain(const Mat<3>& eps_p) { return (eps_p(0, 0) + eps_p(1, 1) - 2.0 * eps_p(2, 2)) / 6.0; }
+
+template <int D>
+std::optional<Mat<3>> fit_plastic_strain(const std::vector<Vec<D>>& xi, const std::vector<double>& w,
+                                         const std::vector<double>& p, double q_p) {
+  const std::vector<Mat<3>> basis = deviatoric_basis<D>();
+  const int n = static_cast<int>(basis.size());
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
+  double scale = 0.0;  // for the rank test: Σ w |ξ|² (the entries' size)
+  for (std::size_t k = 0; k < xi.size(); ++k) {
+    Eigen::VectorXd g(n);
+    for (int a = 0; a < n; ++a) g[a] = bond_plastic_extension<D>(basis[a], xi[k]);
+    A += w[k] * g * g.transpose();
+    rhs += w[k] * p[k] * g;
+    scale += w[k] * xi[k].squaredNorm();
+  }
+  // Rank: the smallest eigenvalue of the normal matrix against its scale; 1e-10 is far
+  // above round-off (1e-16 relative) and far below any set of two non-parallel bonds
+  // (a 45° pair gives ~0.1 of the scale).
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
+  if (!(scale > 0.0) || eig.eigenvalues().minCoeff() <= 1e-10 * scale) return std::nullopt;
+  const Eigen::VectorXd c = A.ldlt().solve(rhs);
+  Mat<3> eps = Mat<3>::Zero();
+  for (int a = 0; a < n; ++a) eps += c[a] * basis[a];
+  if constexpr (D == 2) {
+    // The in-plane trace and ε_zz from q_p = ½ tr ε_p,2 and tr ε_p = 0.
+    eps(0, 0) += q_p;
+    eps(1, 1) += q_p;
+    eps(2, 2) = -2.0 * q_p;
+  }
+  return eps;
+}
+
+template <int D>
+void carry_plastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i,
+                                 const mpm::PointHistory& history) {
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    model.set_plastic_extension(b,
+                                bond_plastic_extension<D>(history.plastic_strain, sys.table.xi[sys.families.shape[b]]));
+  model.set_particle_plastic_state(i, D == 2 ? axial_plastic_strain(history.plastic_strain) : 0.0,
+                                   history.eq_plastic_strain);
+}
+
+template <int D>
+std::optional<mpm::PointHistory> plastic_state_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model,
+                                                       Index i) {
+  std::vector<Vec<D>> xi;
+  std::vector<double> w, p;
+  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
+    xi.push_back(sys.table.xi[k]);
+    w.push_back(sys.table.weight[k] * sys.particles.volume[j]);
+    p.push_back(model.plastic_extension(b));
+  });
+  const std::optional<Mat<3>> eps = fit_plastic_strain<D>(xi, w, p, model.axial_plastic_strain(i));
+  if (!eps) return std::nullopt;
+  mpm::PointHistory h;
+  h.plastic_strain = *eps;
+  h.eq_plastic_strain = model.committed_eq_plastic_strain(i);
+  return h;
+}
+
+template void carry_plastic_state_into_pd<2>(const pd::System<2>&, pd::LpsPlastic<2>&, Index, const mpm::PointHistory&);
+template void carry_plastic_state_into_pd<3>(const pd::System<3>&, pd::LpsPlastic<3>&, Index, const mpm::PointHistory&);
+template std::optional<mpm::PointHistory> plastic_state_from_pd<2>(const pd::System<2>&, const pd::LpsPlastic<2>&,
+                                                                   Index);
+template std::optional<mpm::PointHistory> plastic_state_from_pd<3>(const pd::System<3>&, const pd::LpsPlastic<3>&,
+                                                                   Index);
+template double bond_plastic_extension<2>(const Mat<3>&, const Vec<2>&);
+template double bond_plastic_extension<3>(const Mat<3>&, const Vec<3>&);
+template std::optional<Mat<3>> fit_plastic_strain<2>(const std::vector<Vec<2>>&, const std::vector<double>&,
+                                                     const std::vector<double>&, double);
+template std::optional<Mat<3>> fit_plastic_strain<3>(const std::vector<Vec<3>>&, const std::vector<double>&,
+                                                     const std::vector<double>&, double);
+
+}  // namespace pdmpm::hybrid

@@ -1,0 +1,50 @@
+#pragma once
+// The plastic state of one particle in the two languages of the hybrid (Noorian et al.,
+// adaptive SBPD–MPM; the paper converts particles both ways but does not say what
+// happens to their plastic state — here it is carried, docs/models/hybrid.md):
+//   MPM: the plastic log strain ε_p (3×3, traceless, reference frame, solver/mpm/j2_plasticity);
+//   PD (lps_plastic): a plastic extension p per bond and, in 2D, the axial deviator q_p
+//        per particle (solver/pd/lps_plastic.hpp).
+// A homogeneous plastic strain gives each bond the deviatoric extension it would cause:
+//   3D: p = |ξ| n·ε_p·n (ε_p is traceless, so this is already deviatoric);
+//   2D: p = |ξ| n·(ε_p,2 − ½ tr ε_p,2 I)·n on the in-plane block ε_p,2, and
+//       q_p = (tr ε_p,2 − 2 ε_p,zz)/6 = ½ tr ε_p,2 (the 3D deviator's diag(1, 1, −2) part).
+// Back: the deviatoric tensor whose bond extensions fit p best in the ω-weighted least-
+// squares sense over the given bonds (exact for a homogeneous state whenever the bonds
+// span the deviatoric directions), plus q_p in 2D.
+#include <optional>
+#include <vector>
+
+#include "solver/core/types.hpp"
+#include "solver/mpm/material_point.hpp"
+#include "solver/pd/lps_plastic.hpp"
+
+namespace pdmpm::hybrid {
+
+// p of a bond of reference vector ξ for the plastic strain ε_p (D = 2 or 3).
+template <int D>
+double bond_plastic_extension(const Mat<3>& eps_p, const Vec<D>& xi);
+
+// q_p of a 2D particle (0 in 3D, where there is no axial part).
+double axial_plastic_strain(const Mat<3>& eps_p);
+
+// ε_p from the plastic extensions p[k] of bonds xi[k] with weights w[k] > 0 (ω β V) and,
+// in 2D, q_p. Empty when the bonds do not determine the deviator (fewer independent
+// directions than its 2 (2D) or 5 (3D) components, e.g. a particle with one bond left).
+template <int D>
+std::optional<Mat<3>> fit_plastic_strain(const std::vector<Vec<D>>& xi, const std::vector<double>& w,
+                                         const std::vector<double>& p, double q_p);
+
+// MPM → PD: particle i's plastic state (ε_p, ε̄_p) written into the model, on every bond
+// side of its family (inactive ones too: a bond that becomes live later carries it).
+template <int D>
+void carry_plastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i,
+                                 const mpm::PointHistory& history);
+
+// PD → MPM: particle i's plastic state fitted over its live bonds, with its ε̄_p. Empty
+// when its live bonds do not determine the deviator (the caller decides what to carry).
+template <int D>
+std::optional<mpm::PointHistory> plastic_state_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model,
+                                                       Index i);
+
+}  // namespace pdmpm::hybrid
