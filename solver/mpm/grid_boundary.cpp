@@ -111,7 +111,7 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
           v[i][bc.axis] = 0.0;
           break;
         case BcKind::velocity: {
-          const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+          const Vec<D> target = prescribed(b, n, t);
           for (int a = 0; a < D; ++a)
             if (bc.components[a]) v[i][a] = r * target[a];
         } break;
@@ -124,6 +124,12 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
 }
 
 template <int D>
+Vec<D> GridBoundary<D>::prescribed(std::size_t b, std::size_t n, double t) const {
+  const GridBc<D>& bc = bcs_[b];
+  return bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+}
+
+template <int D>
 double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t) const {
   double power = 0.0;
   for (std::size_t b = 0; b < bcs_.size(); ++b) {
@@ -132,7 +138,7 @@ double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t)
     const double r = ramp(t, bc.ramp_time);
     for (std::size_t n = 0; n < nodes_[b].size(); ++n) {
       const Index i = nodes_[b][n];
-      const Vec<D> target = bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+      const Vec<D> target = prescribed(b, n, t);
       for (int a = 0; a < D; ++a)
         if (bc.components[a]) power -= real_share(i) * f[i][a] * r * target[a];
     }

@@ -52,6 +52,9 @@ class GridBoundary {
     Index outside, inside;
     int axis;
   };
+  // Velocity of velocity bc b at its n-th node and time t, before the ramp.
+  Vec<D> prescribed(std::size_t b, std::size_t n, double t) const;
+
   std::vector<GridBc<D>> bcs_;
   std::vector<std::vector<Index>> nodes_;                        // per velocity-type bc: constrained nodes
   std::vector<std::vector<Vec<D>>> positions_;                   // per bc: positions of its nodes

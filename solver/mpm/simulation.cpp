@@ -181,9 +181,7 @@ void Simulation<D>::compute_stencils() {
       const Index p = order[k];
       const Stencil<D> st =
           make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
-      bool ok = true;
-      for (int a = 0; a < D; ++a) ok = ok && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
-      if (!ok) bad = std::min(bad, p);
+      if (!inside_grid(st)) bad = std::min(bad, p);
       stencil_[k] = st;
     }
   }
@@ -194,6 +192,13 @@ void Simulation<D>::compute_stencils() {
     throw RunError(
         fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
   }
+}
+
+template <int D>
+bool Simulation<D>::inside_grid(const Stencil<D>& st) const {
+  for (int a = 0; a < D; ++a)
+    if (st.first[a] < 0 || st.first[a] + K_ - 1 > grid_.n[a] - 1) return false;
+  return true;
 }
 
 template <int D>
@@ -552,9 +557,7 @@ double Simulation<D>::pending_boundary_work(double dt) const {
     if (state_.failed[p]) continue;
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
-    bool inside = true;
-    for (int a = 0; a < D; ++a) inside = inside && st.first[a] >= 0 && st.first[a] + K_ - 1 <= grid_.n[a] - 1;
-    if (!inside) continue;  // the next step reports it
+    if (!inside_grid(st)) continue;  // the next step reports it
     const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
     for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });
   }

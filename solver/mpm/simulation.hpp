@@ -130,6 +130,7 @@ class Simulation {
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_nonlocal();
   Vec<D> external_force(Index p, double t) const;
+  bool inside_grid(const Stencil<D>& st) const;  // every node of the stencil is a grid node
 
   Settings<D> settings_;
   core::Particles<D>& particles_;

@@ -63,6 +63,8 @@ void round_trip(bool half) {
     ASSERT_TRUE(back.has_value());
     // 1e-13 of the strain: a 2×2 or 5×5 solve of well-conditioned normal equations.
     EXPECT_LT((*back - eps).norm(), 1e-13 * eps.norm()) << "half family " << half;
+    // Traceless by construction (a traceless basis; in 2D q_p + q_p − 2q_p): round-off of
+    // the 2e-2 entries, ≤ 1e-17.
     EXPECT_NEAR(back->trace(), 0.0, 1e-16);
   }
 }
