@@ -29,6 +29,7 @@ void Boundaries<D>::apply_velocity(core::Particles<D>& p, double t) const {
   for (const auto& c : constraints) {
     if (c.kind != ConstraintKind::velocity) continue;
     for (Index i : c.particles) {
+      if (p.kind[i] != core::ParticleKind::pd) continue;  // the grid constrains MPM particles (hybrid)
       const auto vars = variables<D>(p.x0[i], t);
       for (int a = 0; a < D; ++a)
         if (c.active[a]) p.v[i][a] = c.value[a](vars);
@@ -40,6 +41,7 @@ template <int D>
 void Boundaries<D>::apply_displacement(core::Particles<D>& p, double t, double dt) const {
   for (const auto& c : constraints) {
     for (Index i : c.particles) {
+      if (p.kind[i] != core::ParticleKind::pd) continue;
       switch (c.kind) {
         case ConstraintKind::velocity: break;
         case ConstraintKind::fixed:

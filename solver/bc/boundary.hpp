@@ -1,7 +1,8 @@
 #pragma once
 // Boundary conditions on particle regions, applied by the time integrators.
 // Kinematic conditions (fixed, displacement, velocity, analytic) set u and v of
-// their particles' constrained components; tractions add a force density
+// their particles' constrained components (PD particles only: in the hybrid the
+// grid constrains the MPM ones); tractions add a force density
 // σ / layer to the particles of the loaded layer.
 #include <array>
 #include <memory>

@@ -2,7 +2,9 @@
 // Structure-of-arrays particle store. Real particles come first, [0, n_real);
 // mirror ghosts (symmetry planes) follow and copy their owner's reflected state.
 // A particle's kind says which solver integrates it, so a particle can later move
-// between MPM and PD without being copied.
+// between MPM and PD without being copied. `removed` is for good: a particle the
+// hybrid took out of the body at ductile failure (no solver integrates it, no
+// bond reaches it; it stays in the store so indices never move).
 #include <cstdint>
 #include <vector>
 
@@ -11,7 +13,7 @@
 
 namespace pdmpm::core {
 
-enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2 };
+enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };
 
 template <int D>
 struct Particles {

@@ -121,7 +121,7 @@ std::vector<Index> onset(const RegionMap<D>& map, std::span<const Index> failed,
     check_index(map, f);
     if (removed[f]) throw RunError("hybrid regions: a particle failed after it was removed (or is listed twice)");
     removed[f] = 1;
-    kind[f] = ParticleKind::mpm;
+    kind[f] = ParticleKind::removed;
   }
   std::vector<Index> made;
   for (const Index f : failed) convert_ball(map, f, map.pd_ball(), kind, removed, made);

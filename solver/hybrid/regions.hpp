@@ -21,12 +21,11 @@
 // visitor over lattice offsets (regions.cpp, for_each_within); measuring in the
 // current configuration means replacing it with a core::CellList query on x0 + u.
 //
-// Removed particles: core::ParticleKind has no value for "removed" (and
-// pd::pd_like counts every kind but mpm as PD-like), so removal is a separate
-// byte mask indexed like the particle store (mpm::ParticleState::failed fits)
-// that only onset sets and nothing here clears. A removed particle's kind is set
-// to mpm when it is removed and never changes again: mpm keeps its PD bonds
-// inactive (pd::bond_active), and the MPM step already skips failed particles.
+// Removed particles: onset sets a particle's kind to core::ParticleKind::removed
+// and its byte in the `removed` mask (indexed like the particle store), and
+// nothing here changes either again: no bond reaches a removed particle
+// (pd::bond_active) and the MPM step does not map it to the grid. The mask is
+// what the functions below read, so a caller's kind array cannot revive one.
 //
 // No healing: shrink reverts a damaged PD particle only if the caller lets it;
 // the `keep` mask (e.g. damage > 0) names the particles that must stay PD.

@@ -532,6 +532,13 @@ void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
 }
 
 template <int D>
+void Simulation<D>::set_state(Index p, const Mat<D>& F, const PointHistory& history) {
+  state_.history[p] = history;
+  state_.eq_plastic_hardening[p] = history.eq_plastic_strain;
+  set_deformation_gradient(p, F);
+}
+
+template <int D>
 Energies Simulation<D>::energies() const {
   const Index na = static_cast<Index>(active_.size());
   const Vec<3> s = deterministic_sum<Vec<3>>(na, Vec<3>::Zero(), [&](Index k) {

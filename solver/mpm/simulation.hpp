@@ -111,6 +111,9 @@ class Simulation {
   // Set a particle's deformation gradient and recompute its stress (initial
   // states, tests). Plastic history is left as it is.
   void set_deformation_gradient(Index p, const Mat<D>& F);
+  // Set a particle's plastic history, then its deformation gradient (a particle the
+  // hybrid hands back from PD; solver/hybrid/conversion.hpp).
+  void set_state(Index p, const Mat<D>& F, const PointHistory& history);
   // Call after particles were added or changed kind outside the simulation:
   // sizes the MPM state and initialises new slots.
   void sync_particles();

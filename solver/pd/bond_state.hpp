@@ -33,7 +33,7 @@ enum class BondSet { live, reference };
 
 // A particle takes part in PD bonds when it is PD, or a transition particle (an
 // MPM particle inside a PD particle's horizon, a virtual PD particle).
-inline bool pd_like(core::ParticleKind k) { return k != core::ParticleKind::mpm; }
+inline bool pd_like(core::ParticleKind k) { return k == core::ParticleKind::pd || k == core::ParticleKind::transition; }
 // A bond acts when both ends are PD-like and at least one is PD: bonds between
 // two transition particles belong to the grid, not to PD.
 inline bool bond_active(core::ParticleKind a, core::ParticleKind b) {

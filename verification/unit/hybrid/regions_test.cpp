@@ -76,7 +76,7 @@ struct Body {
     EXPECT_EQ(of_kind(ParticleKind::transition), expected_transition());
     for (Index i = 0; i < p.n_real; ++i)
       if (removed[i]) {
-        EXPECT_EQ(kind[i], ParticleKind::mpm) << "removed particle " << i;
+        EXPECT_EQ(kind[i], ParticleKind::removed) << "removed particle " << i;
       }
   }
 };
@@ -96,7 +96,7 @@ void onset_makes_the_brute_force_ball(const IVec<D>& n, const IVec<D>& failed_si
   EXPECT_EQ(made, ball);
   EXPECT_EQ(b.of_kind(ParticleKind::pd), ball);
   EXPECT_TRUE(b.removed[f]);
-  EXPECT_EQ(b.kind[f], ParticleKind::mpm);
+  EXPECT_EQ(b.kind[f], ParticleKind::removed);
   EXPECT_FALSE(b.expected_transition().empty());
   b.expect_invariants();
 }

@@ -1,0 +1,33 @@
+#pragma once
+// The options of an adaptive SBPD–MPM run (scene table [hybrid]; Noorian et al.,
+// adaptive SBPD–MPM, §2). Radii in units of the horizon δ, paper values as defaults.
+#include <array>
+#include <string>
+
+#include "solver/core/named_enum.hpp"
+#include "solver/hybrid/crack_tips.hpp"
+#include "solver/hybrid/regions.hpp"
+
+namespace pdmpm::hybrid {
+
+// The paper's three runs of one scene: pure SBPD over the whole body, PD regions
+// that only grow, and regions that grow with the tips and shrink behind them.
+enum class Mode { pd, expand, expand_shrink };
+constexpr std::array<EnumName<Mode>, 3> names(Mode) {
+  return {{{Mode::pd, "pd"}, {Mode::expand, "expand"}, {Mode::expand_shrink, "expand_shrink"}}};
+}
+
+struct Settings {
+  Mode mode = Mode::expand_shrink;
+  RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
+  int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
+  CrackTipSettings tips;
+  // Particles with a bond cut before the run (a pre-crack) start PD with a region of
+  // R_pd around them: an MPM grid cannot carry a cut (project decision, the paper is silent).
+  bool precrack_starts_pd = true;
+
+  // Throws InputError naming the key (hybrid.…) in `file`.
+  void validate(const std::string& file = "") const;
+};
+
+}  // namespace pdmpm::hybrid
