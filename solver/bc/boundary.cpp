@@ -43,7 +43,8 @@ void Boundaries<D>::apply_displacement(core::Particles<D>& p, double t, double d
     for (Index i : c.particles) {
       if (p.kind[i] != core::ParticleKind::pd) continue;
       switch (c.kind) {
-        case ConstraintKind::velocity: break;
+        case ConstraintKind::velocity:
+          break;
         case ConstraintKind::fixed:
           for (int a = 0; a < D; ++a)
             if (c.active[a]) p.u[i][a] = 0.0, p.v[i][a] = 0.0;

@@ -123,8 +123,18 @@ std::vector<Index> onset(const RegionMap<D>& map, std::span<const Index> failed,
     removed[f] = 1;
     kind[f] = ParticleKind::removed;
   }
+  return seed<D>(map, failed, kind, removed);
+}
+
+template <int D>
+std::vector<Index> seed(const RegionMap<D>& map, std::span<const Index> centres, std::span<ParticleKind> kind,
+                        std::span<const std::uint8_t> removed) {
+  check_shapes<D>(map, kind, removed);
   std::vector<Index> made;
-  for (const Index f : failed) convert_ball(map, f, map.pd_ball(), kind, removed, made);
+  for (const Index c : centres) {
+    check_index(map, c);
+    convert_ball(map, c, map.pd_ball(), kind, removed, made);
+  }
   std::sort(made.begin(), made.end());
   classify(map, kind, removed);
   return made;
@@ -177,6 +187,8 @@ template class RegionMap<2>;
 template void classify<2>(const RegionMap<2>&, std::span<ParticleKind>, std::span<const std::uint8_t>);
 template std::vector<Index> onset<2>(const RegionMap<2>&, std::span<const Index>, std::span<ParticleKind>,
                                      std::span<std::uint8_t>);
+template std::vector<Index> seed<2>(const RegionMap<2>&, std::span<const Index>, std::span<ParticleKind>,
+                                    std::span<const std::uint8_t>);
 template std::vector<Index> expand<2>(const RegionMap<2>&, std::span<const Index>, std::span<ParticleKind>,
                                       std::span<const std::uint8_t>);
 template std::vector<Index> shrink<2>(const RegionMap<2>&, const std::vector<Vec<2>>&, std::span<const std::uint8_t>,
@@ -185,6 +197,8 @@ template class RegionMap<3>;
 template void classify<3>(const RegionMap<3>&, std::span<ParticleKind>, std::span<const std::uint8_t>);
 template std::vector<Index> onset<3>(const RegionMap<3>&, std::span<const Index>, std::span<ParticleKind>,
                                      std::span<std::uint8_t>);
+template std::vector<Index> seed<3>(const RegionMap<3>&, std::span<const Index>, std::span<ParticleKind>,
+                                    std::span<const std::uint8_t>);
 template std::vector<Index> expand<3>(const RegionMap<3>&, std::span<const Index>, std::span<ParticleKind>,
                                       std::span<const std::uint8_t>);
 template std::vector<Index> shrink<3>(const RegionMap<3>&, const std::vector<Vec<3>>&, std::span<const std::uint8_t>,

@@ -103,6 +103,13 @@ template <int D>
 std::vector<Index> onset(const RegionMap<D>& map, std::span<const Index> failed, std::span<core::ParticleKind> kind,
                          std::span<std::uint8_t> removed);
 
+// Initial regions: every particle within R_pd of one of `centres` becomes PD, none
+// is removed (e.g. around a pre-crack, whose faces an MPM grid cannot carry).
+// Returns those made PD.
+template <int D>
+std::vector<Index> seed(const RegionMap<D>& map, std::span<const Index> centres, std::span<core::ParticleKind> kind,
+                        std::span<const std::uint8_t> removed);
+
 // Expansion (eq 11). `triggers`: particles with a bond broken this step; those
 // that are not PD are ignored, so the caller may pass every bond owner. Which
 // triggers fire is decided on the kinds before any conversion, so the result

@@ -111,7 +111,6 @@ class Simulation {
   void evaluate_forces(double t, bool energy);
   std::vector<Index> bonds_broken_by_last_evaluation() const;
   std::vector<std::uint8_t> damaged_pd_particles() const;
-  std::int64_t count_kind(core::ParticleKind k) const;
 
   pd::Simulation<D>& pd_;
   mpm::Simulation<D>& mpm_;
@@ -121,9 +120,10 @@ class Simulation {
   std::vector<CrackTip<D>> tips_;
   int next_tip_id_ = 0;
   std::vector<Index> last_breaks_;  // particles with a bond broken by the last evaluation
+  std::vector<Index> coupled_;      // transition particles carrying a coupling force in b
   int expansions_since_shrink_ = 0;
-  double dt_ = 0.0, time_ = 0.0;
-  std::int64_t steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;
+  double dt_ = 0.0, time_ = 0.0, base_time_ = 0.0;
+  std::int64_t base_steps_ = 0, steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;
   Events events_;
   PhaseSeconds seconds_;
 };

@@ -117,13 +117,15 @@ class Simulation {
   // Call after particles were added or changed kind outside the simulation:
   // sizes the MPM state and initialises new slots.
   void sync_particles();
+  // Re-reads which particles the step integrates (kinds mpm/transition); step() does
+  // it itself, so only needed for momentum()/energies() right after kinds changed.
+  void refresh_active();
 
  private:
   void prepare_step(double t);
   void update_grid(double t, double dt);
   void grid_to_particles(double t, double dt);
   void initialise_particle(Index p);
-  void refresh_active();
   void compute_stencils();
   struct Scatter {
     bool mass = false, momentum = false, forces = false;

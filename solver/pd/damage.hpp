@@ -7,20 +7,22 @@
 namespace pdmpm::pd {
 
 template <int D>
-std::vector<double> local_damage(const System<D>& sys) {
+double particle_damage(const System<D>& sys, Index i) {
   const auto& fam = sys.families;
-  const auto& p = sys.particles;
-  std::vector<double> phi(p.n_real, 0.0);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p.n_real; ++i) {
-    double all = 0.0, intact = 0.0;
-    for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
-      const double V = p.volume[fam.neighbor[b]];
-      all += V;
-      if (!sys.bonds.broken(b)) intact += V;
-    }
-    phi[i] = all > 0.0 ? 1.0 - intact / all : 0.0;
+  double all = 0.0, intact = 0.0;
+  for (BondIndex b = fam.begin(i); b < fam.end(i); ++b) {
+    const double V = sys.particles.volume[fam.neighbor[b]];
+    all += V;
+    if (!sys.bonds.broken(b)) intact += V;
   }
+  return all > 0.0 ? 1.0 - intact / all : 0.0;
+}
+
+template <int D>
+std::vector<double> local_damage(const System<D>& sys) {
+  std::vector<double> phi(sys.particles.n_real, 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < sys.particles.n_real; ++i) phi[i] = particle_damage(sys, i);
   return phi;
 }
 

@@ -1,0 +1,294 @@
+#include "solver/hybrid/simulation.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+
+#include "solver/core/error.hpp"
+#include "solver/hybrid/conversion.hpp"
+#include "solver/pd/damage.hpp"
+
+namespace pdmpm::hybrid {
+
+using core::ParticleKind;
+
+namespace {
+
+template <int D>
+double horizon_ratio(const pd::System<D>& sys) {
+  return sys.delta / sys.spacing();
+}
+
+template <int D>
+double bond_reach(const pd::System<D>& sys) {
+  return pd::family_ratio(sys.partial_volume, sys.delta, sys.spacing());
+}
+
+}  // namespace
+
+template <int D>
+Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const Settings& settings)
+    : pd_(pd),
+      mpm_(mpm),
+      settings_(settings),
+      map_(pd.particles(), horizon_ratio(pd.system()), bond_reach(pd.system()), settings.radii),
+      removed_(static_cast<std::size_t>(pd.particles().n_real), 0) {
+  settings_.validate();
+  if (&mpm.particles() != &pd.particles())
+    throw RunError("hybrid: the PD body and the MPM simulation must share one particle store");
+  if (pd.particles().n_ghost() > 0)
+    throw RunError("hybrid: symmetry planes are not supported (PD regions are not mirrored)");
+}
+
+template <int D>
+void Simulation<D>::start() {
+  auto& p = pd_.particles();
+  auto& sys = pd_.system();
+  const Index n = p.n_real;
+  if (settings_.mode == Mode::pd) {
+    std::fill(p.kind.begin(), p.kind.end(), ParticleKind::pd);
+  } else {
+    std::fill(p.kind.begin(), p.kind.end(), ParticleKind::mpm);
+    std::vector<Index> cut;
+    if (settings_.precrack_starts_pd)
+      for (Index i = 0; i < n; ++i)
+        for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+          if (sys.bonds.flags.committed[b] & pd::kBondCut) {
+            cut.push_back(i);
+            break;
+          }
+    seed<D>(map_, cut, p.kind, removed_);
+  }
+  pd_.refresh_kinds();
+  mpm_.refresh_active();
+  pd_.boundaries().apply_displacement(p, 0.0, 0.0);
+  p.update_ghosts();
+  evaluate_forces(0.0, true);
+  pd_.accept();
+}
+
+template <int D>
+void Simulation<D>::step(double dt, bool energy) {
+  if (!(dt > 0.0)) throw RunError("hybrid: the time step must be positive");
+  if (dt != dt_) base_time_ = time_, base_steps_ = steps_, dt_ = dt;
+  auto& p = pd_.particles();
+  const auto& bcs = pd_.boundaries();
+  const double t = time_;
+  double clock = omp_get_wtime();
+  auto lap = [&clock](double& phase) {
+    const double now = omp_get_wtime();
+    phase += now - clock;
+    clock = now;
+  };
+
+  pd_.kick(0.5 * dt);
+  bcs.apply_velocity(p, t + 0.5 * dt);
+  pd_.drift(dt);
+  lap(seconds_.pd);
+  pd_particle_steps_ += static_cast<std::int64_t>(pd_.movers().size());
+  mpm_particle_steps_ += static_cast<std::int64_t>(mpm_.active().size());
+  mpm_.step(dt);
+  lap(seconds_.mpm);
+  ++steps_;
+  // The time as time::VelocityVerlet has it (Δt × steps for a fixed Δt), so mode pd is bitwise the PD run.
+  time_ = base_time_ + dt * static_cast<double>(steps_ - base_steps_);
+  const double t1 = time_;
+  bcs.apply_displacement(p, t1, dt);
+  p.update_ghosts();
+
+  manage_regions();
+  lap(seconds_.regions);
+  evaluate_forces(t1, energy);
+  clock = omp_get_wtime();
+  pd_.kick(0.5 * dt);
+  bcs.apply_velocity(p, t1);
+  pd_.accept();
+  lap(seconds_.pd);
+}
+
+// PD forces on PD and transition particles at time t; each transition particle's
+// PD force density becomes its external force density for the next grid step. With
+// no PD particle nothing is evaluated and no particle carries a coupling force.
+template <int D>
+void Simulation<D>::evaluate_forces(double t, bool energy) {
+  auto& p = pd_.particles();
+  const double t0 = omp_get_wtime();
+  if (pd_.movers().empty()) {
+    for (const Index i : coupled_) p.b[i].setZero();
+    coupled_.clear();
+    last_breaks_.clear();
+    return;
+  }
+  pd_.forces(t, energy);
+  const double t1 = omp_get_wtime();
+  seconds_.pd += t1 - t0;
+  last_breaks_ = bonds_broken_by_last_evaluation();
+  // pd::Simulation wrote body forces and tractions into b of every particle: the
+  // grid applies its own to MPM particles, so they keep only the coupling force.
+  coupled_.clear();
+  for (Index i = 0; i < p.n_real; ++i) {
+    if (p.kind[i] == ParticleKind::pd) continue;
+    if (p.kind[i] == ParticleKind::transition) {
+      p.b[i] = p.f[i];
+      coupled_.push_back(i);
+    } else {
+      p.b[i].setZero();
+    }
+  }
+  seconds_.coupling += omp_get_wtime() - t1;
+}
+
+template <int D>
+std::vector<Index> Simulation<D>::bonds_broken_by_last_evaluation() const {
+  const auto& sys = pd_.system();
+  std::vector<Index> owners;
+  if (sys.bonds.pending_breaks == 0) return owners;
+  auto visit = [&](Index i) {
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+      if (sys.bonds.broken(b) && !(sys.bonds.flags.committed[b] & pd::kBondBroken)) {
+        owners.push_back(i);
+        return;
+      }
+  };
+  if (sys.owners.empty())
+    for (Index i = 0; i < sys.n_real(); ++i) visit(i);
+  else
+    for (const Index i : sys.owners) visit(i);
+  return owners;
+}
+
+template <int D>
+void Simulation<D>::manage_regions() {
+  if (settings_.mode == Mode::pd) return;
+  auto& kind = pd_.particles().kind;
+  std::vector<Index> failed;
+  for (const Index i : mpm_.newly_failed())
+    if (!removed_[i]) failed.push_back(i);
+  const bool may_shrink = settings_.mode == Mode::expand_shrink;
+  if (failed.empty() && last_breaks_.empty()) return;
+  const std::vector<ParticleKind> before = kind;
+
+  if (!failed.empty()) {
+    onset<D>(map_, failed, kind, removed_);
+    events_.onsets += static_cast<std::int64_t>(failed.size());
+  }
+  if (!last_breaks_.empty() && !expand<D>(map_, last_breaks_, kind, removed_).empty()) {
+    ++events_.expansions;
+    ++expansions_since_shrink_;
+  }
+  if (may_shrink && expansions_since_shrink_ >= settings_.shrink_every) {
+    expansions_since_shrink_ = 0;
+    convert(before);  // tips are searched on the grown region, with its converted state
+    const std::vector<ParticleKind> grown = kind;
+    track_tips();
+    // Without a tip (the tracker found none) nothing is reverted: the paper's rule would
+    // revert the whole region, crack included.
+    if (!tips_.empty()) {
+      std::vector<Vec<D>> at;
+      for (const auto& tip : tips_) at.push_back(tip.position);
+      if (!shrink<D>(map_, at, damaged_pd_particles(), kind, removed_).empty()) ++events_.shrinks;
+    }
+    convert(grown);
+    return;
+  }
+  convert(before);
+}
+
+// Converts every particle whose kind differs from `before` (conversion.hpp), then
+// refreshes the bonds, the PD movers and the grid's particle list.
+template <int D>
+void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
+  auto& p = pd_.particles();
+  auto& sys = pd_.system();
+  bool changed = false;
+  for (Index i = 0; i < p.n_real; ++i) {
+    const ParticleKind was = before[i], now = p.kind[i];
+    if (was == now) continue;
+    changed = true;
+    if (now == ParticleKind::removed) continue;
+    if (now == ParticleKind::pd) {
+      to_pd<D>(mpm_, sys, pd_.model(), i);
+      ++events_.to_pd;
+    } else if (was == ParticleKind::pd) {
+      to_mpm<D>(sys, pd_.model(), mpm_, i);
+      ++events_.to_mpm;
+    }
+  }
+  if (!changed) return;
+  pd_.refresh_kinds();
+  mpm_.refresh_active();
+}
+
+// No healing: a PD particle with a broken bond stays PD, so both faces of a crack
+// keep their broken bonds and never meet on one grid.
+template <int D>
+std::vector<std::uint8_t> Simulation<D>::damaged_pd_particles() const {
+  const auto& sys = pd_.system();
+  std::vector<std::uint8_t> keep(static_cast<std::size_t>(sys.n_real()), 0);
+  for (const Index i : pd_.movers())
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+      if (sys.bonds.broken(b)) {
+        keep[i] = 1;
+        break;
+      }
+  return keep;
+}
+
+template <int D>
+const std::vector<CrackTip<D>>& Simulation<D>::track_tips() {
+  const auto& sys = pd_.system();
+  const auto& p = sys.particles;
+  std::vector<IVec<D>> sites;
+  std::vector<double> phi;
+  for (const Index i : pd_.movers()) {
+    sites.push_back(p.site[i]);
+    phi.push_back(pd::particle_damage(sys, i));
+  }
+  tips_ = match_crack_tips<D>(tips_, find_crack_tips<D>(p.lattice, sites, phi, settings_.tips), settings_.tips,
+                              next_tip_id_);
+  return tips_;
+}
+
+template <int D>
+KindCounts Simulation<D>::counts() const {
+  KindCounts c;
+  const auto& p = pd_.particles();
+  for (Index i = 0; i < p.n_real; ++i) switch (p.kind[i]) {
+      case ParticleKind::pd:
+        ++c.pd;
+        break;
+      case ParticleKind::transition:
+        ++c.transition;
+        break;
+      case ParticleKind::mpm:
+        ++c.mpm;
+        break;
+      case ParticleKind::removed:
+        ++c.removed;
+        break;
+    }
+  return c;
+}
+
+template <int D>
+Vec<D> Simulation<D>::momentum() const {
+  const auto& p = pd_.particles();
+  Vec<D> owed = Vec<D>::Zero();
+  for (const Index i : coupled_) owed += p.volume[i] * p.b[i];
+  return pd_.momentum() + mpm_.momentum() + 0.5 * dt_ * owed;
+}
+
+template <int D>
+double Simulation<D>::kinetic_energy() const {
+  return pd_.kinetic_energy() + mpm_.energies().kinetic;
+}
+
+template <int D>
+double Simulation<D>::internal_energy() const {
+  return pd_.internal_energy() + mpm_.energies().strain;
+}
+
+template class Simulation<2>;
+template class Simulation<3>;
+
+}  // namespace pdmpm::hybrid
