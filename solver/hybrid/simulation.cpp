@@ -41,7 +41,7 @@ Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const 
 }
 
 template <int D>
-void Simulation<D>::start() {
+void Simulation<D>::start(std::span<const Index> initial_pd) {
   auto& p = pd_.particles();
   auto& sys = pd_.system();
   const Index n = p.n_real;
@@ -57,6 +57,10 @@ void Simulation<D>::start() {
             cut.push_back(i);
             break;
           }
+    for (const Index i : initial_pd) {
+      if (i < 0 || i >= n) throw RunError("hybrid: an initial PD particle is not a real particle");
+      p.kind[i] = ParticleKind::pd;
+    }
     seed<D>(map_, cut, p.kind, removed_);
   }
   pd_.refresh_kinds();

@@ -32,6 +32,7 @@
 // step is the pure MPM step; with mode pd and no MPM particle the sequence is exactly
 // time::VelocityVerlet's.
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "solver/hybrid/crack_tips.hpp"
@@ -73,8 +74,9 @@ class Simulation {
   Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const Settings& settings);
 
   // Kinds at t = 0 (mode pd: every particle PD; otherwise MPM, with a PD region
-  // around pre-cracks), boundary conditions at t = 0 and the first PD forces.
-  void start();
+  // around pre-cracks, and the particles `initial_pd` PD), boundary conditions at
+  // t = 0 and the first PD forces.
+  void start(std::span<const Index> initial_pd = {});
   // One step of size dt (the caller's: the smaller of the PD and MPM stable steps).
   void step(double dt, bool energy = false);
 

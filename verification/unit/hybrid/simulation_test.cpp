@@ -9,27 +9,13 @@
 
 #include "solver/hybrid/conversion.hpp"
 #include "solver/sim/mpm_setup.hpp"
-#include "solver/sim/pd_setup.hpp"
 #include "solver/time/velocity_verlet.hpp"
-#include "verification/support/scene_text.hpp"
+#include "verification/support/hybrid_body.hpp"
 
 namespace pdmpm::hybrid {
 namespace {
 
 using core::ParticleKind;
-
-// One steel plate (E = 200 GPa, ν = 0.3, σ_y = 250 MPa, E_t = 2 GPa) for both methods.
-const std::string kHardening = "yield_stress = 250e6\ntangent_modulus = 2e9";
-
-io::Scene plate(const std::string& model, const std::string& tables = "") {
-  const bool mpm = model == "mpm";
-  return test::SceneText{.id = "hybrid",
-                         .max = {0.03, 0.015},
-                         .material_keys = kHardening + (mpm ? "\nconstitutive = \"j2\"" : ""),
-                         .model = mpm ? "mpm" : "lps_plastic",
-                         .tables = tables}
-      .parse("hybrid.toml");
-}
 
 // A smooth velocity field, large enough to yield within a few hundred steps.
 void kick_field(core::Particles<2>& p) {
@@ -39,20 +25,10 @@ void kick_field(core::Particles<2>& p) {
   }
 }
 
-// The PD body, an MPM simulation on its particles and the hybrid over both.
-struct Body {
-  sim::PdSetup<2> pd_setup;
-  std::unique_ptr<pd::Simulation<2>> pd;
-  std::unique_ptr<mpm::Simulation<2>> mpm;
-  std::unique_ptr<Simulation<2>> hybrid;
-
-  explicit Body(Settings settings, const std::string& tables = "") : pd_setup(sim::build_pd<2>(plate("pd", tables))) {
-    pd = std::make_unique<pd::Simulation<2>>(sim::make_simulation(pd_setup));
-    mpm = std::make_unique<mpm::Simulation<2>>(sim::build_mpm<2>(plate("mpm")).settings, pd_setup.system.particles);
-    hybrid = std::make_unique<Simulation<2>>(*pd, *mpm, settings);
-  }
-  core::Particles<2>& particles() { return pd_setup.system.particles; }
-};
+using Body = test::HybridBody;
+io::Scene plate(const std::string& method, const std::string& pd_tables = "") {
+  return test::HybridPlate{.pd_tables = pd_tables}.scene(method);
+}
 
 constexpr double kDt = 2e-8;  // below both stable steps (PD ≈ 6e-8 s, grid ≈ 1.6e-7 s at Δx = 1 mm)
 
@@ -90,7 +66,7 @@ TEST(HybridSimulation, ModePdIsThePurePdRunBitwise) {
 
   Settings settings;
   settings.mode = Mode::pd;
-  Body body{settings, tables};
+  Body body{settings, {.pd_tables = tables}};
   kick_field(body.particles());
   body.hybrid->start();
   ASSERT_EQ(body.hybrid->counts().pd, body.particles().n_real);
@@ -116,7 +92,7 @@ TEST(HybridSimulation, CouplingAcrossTheInterfaceConservesMomentum) {
   settings.radii.pd_radius = 1.5;
   settings.radii.expand_trigger = 0.5;
   settings.radii.expand_radius = 1.0;
-  Body body{settings, "[[precrack]]\nfrom = [0.012, 0.0075]\nto = [0.018, 0.0075]\n"};
+  Body body{settings, {.pd_tables = "[[precrack]]\nfrom = [0.012, 0.0075]\nto = [0.018, 0.0075]\n"}};
   kick_field(body.particles());
   body.hybrid->start();
   const KindCounts c = body.hybrid->counts();
