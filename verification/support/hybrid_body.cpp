@@ -7,7 +7,7 @@ namespace pdmpm::test {
 
 io::Scene HybridPlate::scene(const std::string& method) const {
   const bool pd = method == "pd";
-  std::string keys = "yield_stress = 250e6\ntangent_modulus = 2e9";
+  std::string keys = hardening;
   if (!pd) keys += "\nconstitutive = \"j2\"";
   for (const std::string* k : {&material_keys, pd ? &pd_material_keys : nullptr})
     if (k && !k->empty()) keys += "\n" + *k;

@@ -19,6 +19,7 @@ struct HybridPlate {
   std::string pd_tables;         // PD only: pre-cracks
   std::string material_keys;     // both methods
   std::string pd_material_keys;  // PD only: critical_stretch
+  std::string hardening = "yield_stress = 250e6\ntangent_modulus = 2e9";
 
   // The scene as the PD body ("pd") or the MPM settings ("mpm") read it.
   io::Scene scene(const std::string& method) const;
