@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/hybrid/settings.hpp"
 #include "solver/mpm/settings.hpp"
 #include "solver/pd/influence.hpp"
 #include "solver/core/material.hpp"
@@ -154,7 +155,8 @@ struct MpmSpec {
 };
 
 // Which method integrates the body. `pd` and `mpm` follow from [model] type;
-// `hybrid` (the adaptive SBPD–MPM coupling) is reserved: no scene selects it yet.
+// `hybrid` (the adaptive SBPD–MPM coupling) from a [hybrid] table, with the PD
+// model in [model] and the grid options in [mpm].
 enum class Method { pd, mpm, hybrid };
 
 struct Scene {
@@ -178,7 +180,8 @@ struct Scene {
   bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   bool isotropic_deviatoric = false;       // model.isotropy = "corrected" (plastic PD models)
   ContactSpec contact;
-  std::optional<MpmSpec> mpm;  // set when model = "mpm"
+  std::optional<MpmSpec> mpm;              // set when model = "mpm", and for a hybrid scene
+  std::optional<hybrid::Settings> hybrid;  // the [hybrid] table (method hybrid)
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
@@ -212,6 +215,21 @@ void read_mpm_options(const TomlReader& table, Scene& s);
 // Rejects the PD-only parts of a scene (pre-cracks, indenter, crack observables,
 // displacement/analytic boundaries, non-box regions) for model type "mpm".
 void check_mpm_scene(const Scene& s);
+
+// Rejects, for the MPM grid, boundaries other than fixed/velocity/traction on boxes
+// (`who`: "the mpm model", "the hybrid").
+void check_grid_boundaries(const Scene& s, const std::string& who);
+
+// Hybrid parts of a scene (scene_hybrid.cpp). start_hybrid_model: after the PD
+// model is read, accepts lps_plastic or lps and sets the matching MPM law;
+// read_hybrid_material: [material] constitutive, if given, must be that law;
+// read_hybrid: the [hybrid] table (needs the dimension); check_hybrid_scene:
+// refuses symmetry planes, indenter, contact, crack observables, and boundaries
+// the grid cannot take.
+void start_hybrid_model(const TomlReader& model, Scene& s);
+void read_hybrid_material(const TomlReader& material, Scene& s);
+void read_hybrid(const TomlReader& table, Scene& s);
+void check_hybrid_scene(const Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.
 Scene parse_scene(const std::string& path);

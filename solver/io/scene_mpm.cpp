@@ -58,14 +58,18 @@ void check_mpm_scene(const Scene& s) {
   if (s.crack.enabled)
     fail(s.observes.empty() ? "crack" : s.observes.front().key, "crack observables need PD bonds (pmb, lps)");
   if (s.time.safety_factor > 1.0) fail("time.safety_factor", "is the CFL number of the mpm model: must be in (0, 1]");
+  check_grid_boundaries(s, "the mpm model");
+}
+
+void check_grid_boundaries(const Scene& s, const std::string& who) {
+  auto fail = [&](const std::string& key, const std::string& why) { throw InputError(s.file, key, why); };
   // Grid boundary conditions select the grid nodes inside a box; tractions the particles in it.
   for (const auto& b : s.boundaries) {
     if (b.kind == BoundaryKind::displacement || b.kind == BoundaryKind::analytic)
-      fail(b.key + ".kind",
-           "the mpm model constrains grid velocities: use kind = \"fixed\", \"velocity\" or \"traction\"");
+      fail(b.key + ".kind", who + " constrains grid velocities: use kind = \"fixed\", \"velocity\" or \"traction\"");
     for (std::size_t k = 0; k < b.region.size(); ++k)
       if (b.region[k].type != "box" || b.region[k].subtract)
-        fail(b.region[k].key, "the mpm model takes boundary regions as boxes (type = \"box\"/\"rectangle\", added)");
+        fail(b.region[k].key, who + " takes boundary regions as boxes (type = \"box\"/\"rectangle\", added)");
   }
 }
 

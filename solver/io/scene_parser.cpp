@@ -105,10 +105,14 @@ void read_discretization(const TomlReader& d, Scene& s) {
   d.finish();
 }
 
-void read_model(const TomlReader& m, Scene& s) {
+void read_model(const TomlReader& m, Scene& s, bool hybrid) {
   s.model = m.string("type");
   std::string names;
   for (const auto& n : pd::model_names()) names += n + ", ";
+  if (s.model == "mpm" && hybrid)
+    m.fail("type",
+           "a hybrid scene ([hybrid]) needs the PD model in [model]: \"lps_plastic\" (MPM constitutive j2) or \"lps\" "
+           "(MPM constitutive linear_elastic); the [mpm] table holds the grid options");
   if (s.model == "mpm") {
     s.method = Method::mpm;
     s.mpm.emplace();  // defaults; [material] and [mpm] fill it
@@ -121,6 +125,7 @@ void read_model(const TomlReader& m, Scene& s) {
   if (!pd::find_model(s.model)) m.fail("type", "must be one of " + names + "mpm; got \"" + s.model + "\"");
   s.method = Method::pd;
   read_pd_model(m, s);
+  if (hybrid) start_hybrid_model(m, s);
 }
 
 void read_material(const TomlReader& m, Scene& s) {
@@ -180,6 +185,7 @@ void read_material(const TomlReader& m, Scene& s) {
     m.fail("critical_stretch", "give at most one of critical_stretch and fracture_energy");
   if (s.critical_stretch) m.positive("critical_stretch", *s.critical_stretch);
   if (s.fracture_energy) m.positive("fracture_energy", *s.fracture_energy);
+  if (s.method == Method::hybrid) read_hybrid_material(m, s);
   m.finish();
 }
 
@@ -191,6 +197,13 @@ void read_time(const TomlReader& t, Scene& s) {
       t.fail("integrator", "the mpm model steps explicitly; use [mpm] damping_* for quasi-static runs");
     for (const char* pd_only : {"stable_step", "tolerance", "max_steps", "load_steps"})
       if (t.has(pd_only)) t.fail(pd_only, "only for the peridynamic models");
+  }
+  if (s.method == Method::hybrid) {
+    // One explicit step for both methods; stable_step picks the PD estimate.
+    if (s.time.integrator != Integrator::verlet)
+      t.fail("integrator", "the hybrid steps explicitly (velocity Verlet around the grid step)");
+    for (const char* adr_only : {"tolerance", "max_steps", "load_steps"})
+      if (t.has(adr_only)) t.fail(adr_only, "only for integrator = \"adr\" (the hybrid steps explicitly)");
   }
   s.time.end_time = t.optional_number("end_time");
   s.time.steps = t.optional_integer("steps");
@@ -419,6 +432,8 @@ void read_hardening(const TomlReader& m, Scene& s) {
 
 std::vector<std::string> output_field_names(const Scene& s) {
   if (s.method == Method::mpm) return mpm_field_names();
+  // method: 0 pd, 1 mpm, 2 transition, 3 removed; von Mises from PD or the grid, by method.
+  if (s.method == Method::hybrid) return {"method", "displacement", "velocity", "damage", "von_mises"};
   std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
   if (pd::model_info(s.model).plastic) names.insert(names.end(), {"triaxiality", "eq_plastic_strain"});
   return names;
@@ -445,19 +460,24 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   s.description = head.optional_string("description").value_or("");
   head.finish();
 
-  read_model(root.table("model"), s);
+  read_model(root.table("model"), s, root.has("hybrid"));
   read_discretization(root.table("discretization"), s);
   read_material(root.table("material"), s);
   if (s.method == Method::mpm) {
     if (auto t = root.optional_table("mpm")) read_mpm_options(*t, s);
+  } else if (s.method == Method::hybrid) {
+    if (!root.has("mpm"))
+      root.fail("mpm", "missing: a hybrid scene needs the [mpm] table (the grid options; it may be empty)");
+    read_mpm_options(root.table("mpm"), s);
+    read_hybrid(root.table("hybrid"), s);
   } else if (root.has("mpm")) {
-    root.fail("mpm", "only for model type = \"mpm\"");
+    root.fail("mpm", "only for model type = \"mpm\" or a hybrid scene ([hybrid])");
   }
-  const bool any_failure = s.critical_stretch || s.fracture_energy || (s.method == Method::pd && s.failure.enabled);
+  const bool any_failure = s.critical_stretch || s.fracture_energy || (s.method != Method::mpm && s.failure.enabled);
   if (s.damage && !any_failure && root.table("model").has("damage"))
     root.fail("model.damage",
               "damage = true needs material.critical_stretch, material.fracture_energy or [material.failure]");
-  if (!s.damage && s.method == Method::pd && s.failure.enabled)
+  if (!s.damage && s.method != Method::mpm && s.failure.enabled)
     root.fail("material.failure", "model.damage = false switches every failure rule off; remove one of the two");
   s.damage = s.damage && any_failure;
   read_geometry(root, s);
@@ -471,6 +491,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
     s.output.fields = output_field_names(s);
   root.finish();
   if (s.method == Method::mpm) check_mpm_scene(s);
+  if (s.method == Method::hybrid) check_hybrid_scene(s);
   return s;
 }
 

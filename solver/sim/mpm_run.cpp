@@ -6,6 +6,8 @@
 
 #include "solver/core/error.hpp"
 #include "solver/mpm/simulation.hpp"
+#include "solver/sim/frame_fields.hpp"
+#include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
 #include "solver/sim/run_recorder.hpp"
 
@@ -21,13 +23,12 @@ class MpmRun {
         p_(setup.particles),
         sim_(setup.settings, setup.particles, scene.file, "mpm"),
         rec_(scene, options) {
-    check_boundary_nodes();
+    check_boundary_nodes<D>(scene_, s_.grid_bc_source, sim_);
   }
 
   RunResult run();
 
  private:
-  void check_boundary_nodes() const;
   void choose_time_step();
   void start_outputs();
   void history_row(std::int64_t step, double t);
@@ -45,31 +46,14 @@ class MpmRun {
   std::int64_t total_steps_ = 0, steps_done_ = 0, failed_ = 0;
 };
 
-// Each fixed/velocity region must hold a grid node, or the condition does nothing.
-template <int D>
-void MpmRun<D>::check_boundary_nodes() const {
-  for (std::size_t b = 0; b < s_.grid_bc_source.size(); ++b) {
-    const int src = s_.grid_bc_source[b];
-    if (src >= 0 && sim_.boundary().nodes(b).empty()) {
-      std::ostringstream m;
-      m << "contains no grid node (the mpm model constrains grid nodes; cell size " << sim_.cell_size()
-        << " m, grid lines through the body's lower faces): enlarge the box";
-      throw InputError(scene_.file, scene_.boundaries[static_cast<std::size_t>(src)].key + ".region", m.str());
-    }
-  }
-}
-
 template <int D>
 void MpmRun<D>::choose_time_step() {
   dt_cfl0_ = sim_.stable_dt();
-  dt_ = scene_.time.dt ? *scene_.time.dt : scene_.time.safety_factor * dt_cfl0_;
-  if (scene_.time.steps) {
-    total_steps_ = *scene_.time.steps;
-  } else {
-    total_steps_ = static_cast<std::int64_t>(std::ceil(*scene_.time.end_time / dt_ * (1.0 - 1e-12)));
-    dt_ = *scene_.time.end_time / static_cast<double>(total_steps_);  // land exactly on end_time
-  }
-  end_time_ = dt_ * static_cast<double>(total_steps_);
+  const StepPlan plan =
+      plan_steps(scene_.time, scene_.time.dt ? *scene_.time.dt : scene_.time.safety_factor * dt_cfl0_);
+  dt_ = plan.dt;
+  total_steps_ = plan.steps;
+  end_time_ = plan.end_time;
 }
 
 template <int D>
@@ -122,22 +106,9 @@ void MpmRun<D>::frame(std::int64_t step, double t) {
   auto* writer = rec_.fields();
   if (!writer) return;
   const Index n = p_.n_real;
-  auto wants = [&](const char* name) {
-    return std::find(scene_.output.fields.begin(), scene_.output.fields.end(), name) != scene_.output.fields.end();
-  };
-  auto vec3 = [&](auto&& value) {
-    std::vector<double> out(static_cast<std::size_t>(n) * 3, 0.0);
-    for (Index i = 0; i < n; ++i) {
-      const Vec<D> v = value(i);
-      for (int a = 0; a < D; ++a) out[3 * i + a] = v[a];
-    }
-    return out;
-  };
-  auto scalar = [&](auto&& value) {
-    std::vector<double> out(static_cast<std::size_t>(n));
-    for (Index i = 0; i < n; ++i) out[i] = value(i);
-    return out;
-  };
+  auto wants = [&](const char* name) { return wants_field(scene_, name); };
+  auto vec3 = [&](auto&& value) { return vector_field<D>(n, value); };
+  auto scalar = [&](auto&& value) { return scalar_field(n, value); };
   std::vector<io::Field> fields;
   if (wants("displacement"))
     fields.push_back({"displacement", io::FieldKind::vector, vec3([&](Index i) { return p_.u[i]; })});

@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "solver/bc/expression.hpp"
 #include "solver/core/error.hpp"
 #include "solver/core/particle_builder.hpp"
+#include "solver/mpm/simulation.hpp"
 #include "solver/sim/geometry_from_scene.hpp"
 
 namespace pdmpm::sim {
@@ -31,7 +33,7 @@ std::vector<std::shared_ptr<bc::Expression>> parse_components(const io::Boundary
 }
 
 template <int D>
-void add_boundary(const io::Scene& s, std::size_t index, MpmSetup<D>& out) {
+void add_boundary(const io::Scene& s, std::size_t index, MpmGridSettings<D>& out) {
   const io::BoundarySpec& b = s.boundaries[index];
   if (b.kind == io::BoundaryKind::traction) {
     const auto value = parse_components<D>(b);
@@ -80,16 +82,10 @@ void add_boundary(const io::Scene& s, std::size_t index, MpmSetup<D>& out) {
 }  // namespace
 
 template <int D>
-MpmSetup<D> build_mpm(const io::Scene& s) {
+MpmGridSettings<D> translate_mpm(const io::Scene& s) {
   const io::MpmSpec& m = *s.mpm;
-  MpmSetup<D> out;
   const auto geometry = make_geometry<D>(s.shapes);
-  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
-  out.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
-  if (out.particles.n_real == 0)
-    throw InputError(s.file, "shape", "the shapes contain no lattice site: check their extents against discretization.spacing");
-  for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
-
+  MpmGridSettings<D> out;
   auto& st = out.settings;
   st.setting = s.setting;
   st.material = {m.constitutive, s.material, s.hardening};
@@ -118,9 +114,13 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
     g.axis = sym.axis;
     g.position = sym.position;
     const double tol = 1e-9 * s.spacing;
-    if (bounds.min[sym.axis] >= sym.position - tol) g.side = +1;
-    else if (bounds.max[sym.axis] <= sym.position + tol) g.side = -1;
-    else throw InputError(s.file, sym.key + ".position", "the symmetry plane cuts the body: it must lie on a face of the body");
+    if (bounds.min[sym.axis] >= sym.position - tol)
+      g.side = +1;
+    else if (bounds.max[sym.axis] <= sym.position + tol)
+      g.side = -1;
+    else
+      throw InputError(s.file, sym.key + ".position",
+                       "the symmetry plane cuts the body: it must lie on a face of the body");
     st.origin[sym.axis] = sym.position;
     st.boundaries.push_back(std::move(g));
     out.grid_bc_source.push_back(-1);
@@ -137,10 +137,45 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
       return acc;
     };
   }
+  return out;
+}
+
+template <int D>
+MpmSetup<D> build_mpm(const io::Scene& s) {
+  MpmSetup<D> out;
+  const auto geometry = make_geometry<D>(s.shapes);
+  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
+  out.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
+  if (out.particles.n_real == 0)
+    throw InputError(s.file, "shape",
+                     "the shapes contain no lattice site: check their extents against discretization.spacing");
+  for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
+  auto grid = translate_mpm<D>(s);
+  out.settings = std::move(grid.settings);
+  out.grid_bc_source = std::move(grid.grid_bc_source);
   out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
   return out;
 }
 
+template <int D>
+void check_boundary_nodes(const io::Scene& s, const std::vector<int>& grid_bc_source, const mpm::Simulation<D>& sim) {
+  for (std::size_t b = 0; b < grid_bc_source.size(); ++b) {
+    const int src = grid_bc_source[b];
+    if (src >= 0 && sim.boundary().nodes(b).empty()) {
+      std::ostringstream m;
+      m << "contains no grid node (the mpm model constrains grid nodes; cell size " << sim.cell_size()
+        << " m, grid lines through the body's lower faces): enlarge the box";
+      throw InputError(s.file, s.boundaries[static_cast<std::size_t>(src)].key + ".region", m.str());
+    }
+  }
+}
+
+template MpmGridSettings<1> translate_mpm<1>(const io::Scene&);
+template MpmGridSettings<2> translate_mpm<2>(const io::Scene&);
+template MpmGridSettings<3> translate_mpm<3>(const io::Scene&);
+template void check_boundary_nodes<1>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<1>&);
+template void check_boundary_nodes<2>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<2>&);
+template void check_boundary_nodes<3>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<3>&);
 template MpmSetup<1> build_mpm<1>(const io::Scene&);
 template MpmSetup<2> build_mpm<2>(const io::Scene&);
 template MpmSetup<3> build_mpm<3>(const io::Scene&);

@@ -9,9 +9,31 @@
 #include "solver/core/particles.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/mpm/settings.hpp"
+#include "solver/mpm/simulation.hpp"
 #include "solver/sim/probes.hpp"
 
 namespace pdmpm::sim {
+
+// The mpm::Settings a scene's [material], [mpm], [time], boundaries, symmetry
+// planes and body force translate into (model type "mpm", and the grid of a
+// hybrid scene), with the grid origin on the body's lower faces.
+template <int D>
+struct MpmGridSettings {
+  mpm::Settings<D> settings;
+  // Per settings.boundaries entry: the index of the scene boundary it comes from
+  // (fixed/velocity regions), or −1 for a symmetry plane.
+  std::vector<int> grid_bc_source;
+};
+
+// Throws InputError for a symmetry plane that cuts the body or a "free" traction component.
+template <int D>
+MpmGridSettings<D> translate_mpm(const io::Scene& scene);
+
+// Each fixed/velocity region must hold a grid node, or the condition does nothing:
+// InputError naming the boundary's region otherwise.
+template <int D>
+void check_boundary_nodes(const io::Scene& scene, const std::vector<int>& grid_bc_source,
+                          const mpm::Simulation<D>& sim);
 
 template <int D>
 struct MpmSetup {

@@ -7,6 +7,15 @@
 
 namespace pdmpm::sim {
 
+// A fixed-step explicit run: `time.steps` steps of dt, or enough steps of at most
+// dt to reach time.end_time, with dt shortened to land exactly on it.
+struct StepPlan {
+  double dt = 0.0;
+  std::int64_t steps = 0;
+  double end_time = 0.0;
+};
+StepPlan plan_steps(const io::TimeSpec& time, double dt);
+
 // History cadence: output.history_every, else about 1000 rows per run.
 std::int64_t history_interval(const io::OutputSpec& out, std::int64_t total_steps);
 

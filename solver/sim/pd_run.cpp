@@ -12,6 +12,7 @@
 #include "solver/pd/stress.hpp"
 #include "solver/time/dynamic_relaxation.hpp"
 #include "solver/sim/crack_report.hpp"
+#include "solver/sim/frame_fields.hpp"
 #include "solver/sim/run_recorder.hpp"
 #include "solver/sim/run_metrics.hpp"
 #include "solver/time/velocity_verlet.hpp"
@@ -250,15 +251,9 @@ void PdRun<D>::frame(std::int64_t step, double t) {
   writer->write_frame(step, t, vec3(pos), fields);
 }
 
-// The model's own stress where it has one (plastic models), else the
-// deformation-gradient stress (Hooke's law of the non-local strain).
 template <int D>
 std::vector<pd::Tensor6> PdRun<D>::stresses() const {
-  if (!s_.model->has_own_stress()) return pd::particle_stress(s_.system);
-  std::vector<pd::Tensor6> out(p_.n_real);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p_.n_real; ++i) out[i] = s_.model->own_stress(s_.system, i);
-  return out;
+  return pd_stresses<D>(s_.system, *s_.model);
 }
 
 template <int D>

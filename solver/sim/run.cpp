@@ -7,6 +7,7 @@
 
 #include "solver/core/error.hpp"
 #include "solver/io/output_directory.hpp"
+#include "solver/sim/hybrid_run.hpp"
 #include "solver/sim/mpm_run.hpp"
 #include "solver/sim/pd_run.hpp"
 
@@ -24,9 +25,14 @@ RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
       auto setup = build_pd<D>(scene);
       return run_pd<D>(scene, setup, options);
     }
-    case io::Method::hybrid: break;
+    case io::Method::hybrid:
+      if constexpr (D >= 2) {
+        auto setup = build_hybrid<D>(scene);
+        return run_hybrid<D>(scene, *setup, options);
+      }
+      break;
   }
-  throw InputError(scene.file, "model.type", "the adaptive SBPD–MPM hybrid is not implemented yet");
+  throw InputError(scene.file, "discretization.dimension", "the adaptive SBPD–MPM hybrid needs dimension 2 or 3");
 }
 
 }  // namespace
@@ -48,9 +54,12 @@ RunResult commit_run(io::OutputDirectory& out, std::string status, std::string m
 RunResult run_scene(const io::Scene& scene, const RunOptions& options) {
   if (options.threads > 0) omp_set_num_threads(options.threads);
   switch (scene.dimension) {
-    case 1: return run_dim<1>(scene, options);
-    case 2: return run_dim<2>(scene, options);
-    default: return run_dim<3>(scene, options);
+    case 1:
+      return run_dim<1>(scene, options);
+    case 2:
+      return run_dim<2>(scene, options);
+    default:
+      return run_dim<3>(scene, options);
   }
 }
 
