@@ -70,6 +70,17 @@ def plastic(old, new):
     return PLASTIC_BASE.replace(old, new, 1)
 
 
+# The same body as an adaptive SBPD–MPM scene: the PD model in [model], the grid in [mpm], a [hybrid] table.
+HYBRID_BASE = (replace('type = "lps"\ninfluence = "constant"', 'type = "lps_plastic"')
+               .replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8\ntangent_modulus = 1e9")
+               + "\n[mpm]\n\n[hybrid]\n")
+
+
+def hybrid(old, new):
+    assert old in HYBRID_BASE, old
+    return HYBRID_BASE.replace(old, new, 1)
+
+
 CASES = {
     "unknown_top_key": ("foo | unknown key", BASE + "\n[foo]\nbar = 1\n"),
     "unknown_material_key": ("material.youngs_modulu | unknown key", replace("density = 2500", "density = 2500\nyoungs_modulu = 1")),
@@ -156,6 +167,23 @@ CASES = {
     "yield_for_elastic_pd": ("material.yield_stress | only for the plastic models", replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8")),
     "isotropy_for_elastic_pd": ("model.isotropy | only for the plastic models", replace('influence = "constant"', 'influence = "constant"\nisotropy = "lattice"')),
     "plastic_unknown_isotropy": ("model.isotropy | must be one of corrected, lattice", plastic('type = "lps_plastic"', 'type = "lps_plastic"\nisotropy = "cubic"')),
+    "hybrid_1d": ("discretization.dimension | the hybrid needs dimension = 2 or 3", hybrid('dimension = 2\nplane = "strain"', "dimension = 1").replace("thickness = 1e-3", "area = 1e-6")),
+    "hybrid_missing_mpm": ("mpm | a hybrid scene needs the [mpm] table", hybrid("\n[mpm]\n", "")),
+    "hybrid_mpm_model": ("model.type | needs the PD model in [model]", hybrid('type = "lps_plastic"', 'type = "mpm"')),
+    "hybrid_pmb_model": ("model.type | needs the PD model in [model]", hybrid('type = "lps_plastic"', 'type = "pmb"')),
+    "hybrid_unknown_mode": ("hybrid.mode | must be one of pd, expand, expand_shrink", hybrid("[hybrid]\n", '[hybrid]\nmode = "grow"\n')),
+    "hybrid_zero_radius": ("hybrid.pd_radius | must be a positive, finite number of horizons", hybrid("[hybrid]\n", "[hybrid]\npd_radius = 0\n")),
+    "hybrid_negative_keep_radius": ("hybrid.keep_radius | must be a positive, finite number of horizons", hybrid("[hybrid]\n", "[hybrid]\nkeep_radius = -2\n")),
+    "hybrid_trigger_above_radius": ("hybrid.expand_trigger | must be smaller than hybrid.expand_radius", hybrid("[hybrid]\n", "[hybrid]\nexpand_trigger = 7\nexpand_radius = 7\n")),
+    "hybrid_unknown_key": ("hybrid.pd_radus | unknown key", hybrid("[hybrid]\n", "[hybrid]\npd_radus = 7\n")),
+    "hybrid_shrink_every_zero": ("hybrid.shrink_every | must be an integer in [1, 1000000]", hybrid("[hybrid]\n", "[hybrid]\nshrink_every = 0\n")),
+    "hybrid_tips_damage_threshold": ("hybrid.tips.damage_threshold | must be in (0, 1)", HYBRID_BASE + "\n[hybrid.tips]\ndamage_threshold = 1.5\n"),
+    "hybrid_tips_zero_merge_radius": ("hybrid.tips.merge_radius | must be in (0, 1e+06]", HYBRID_BASE + "\n[hybrid.tips]\nmerge_radius = 0\n"),
+    "hybrid_tips_unknown_key": ("hybrid.tips.radius | unknown key", HYBRID_BASE + "\n[hybrid.tips]\nradius = 3\n"),
+    "hybrid_symmetry": ("symmetry[0] | not supported in a hybrid scene", HYBRID_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
+    "hybrid_wrong_constitutive": ("material.constitutive | must be \"j2\" for the hybrid", hybrid("density = 2500", 'density = 2500\nconstitutive = "linear_elastic"')),
+    "hybrid_displacement_boundary": ("boundary[0].kind | the hybrid constrains grid velocities", hybrid('kind = "fixed"', 'kind = "displacement"\nvalue = ["0", "0"]')),
+    "hybrid_adr": ("time.integrator | the hybrid steps explicitly", hybrid("end_time = 1e-6", 'end_time = 1e-6\nintegrator = "adr"').replace("end_time = 1e-6\n", "", 1)),
 }
 
 

@@ -1,0 +1,183 @@
+// `pdmpm run` on adaptive SBPD–MPM scenes ([hybrid]): the scene keys, and a tiny
+// plate end to end in each mode — outputs present, the per-particle `method`
+// field, history columns, and the particle counts each mode implies.
+#include "solver/sim/hybrid_run.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "solver/core/error.hpp"
+#include "solver/io/scene.hpp"
+#include "solver/sim/run.hpp"
+#include "verification/support/fields_reader.hpp"
+#include "verification/support/scene_text.hpp"
+#include "verification/support/scratch_dir.hpp"
+
+namespace pdmpm::sim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Header and last row of history.csv.
+std::map<std::string, std::string> last_history_row(const fs::path& csv) {
+  std::ifstream in(csv);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  std::map<std::string, std::string> row;
+  std::stringstream h(header), v(last);
+  std::string name, value;
+  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = value;
+  return row;
+}
+
+// A 30 × 20 plate (Δx = 1 mm, δ = 3Δx) of lps_plastic + J2, an edge pre-crack,
+// pulled apart at its top and bottom edges.
+test::SceneText plate(const std::string& hybrid_keys, const std::string& time = "steps = 200") {
+  test::SceneText t;
+  t.id = "hybrid_plate";
+  t.plane = "strain";
+  t.min = {0.0, 0.0};
+  t.max = {0.03, 0.02};
+  t.poissons_ratio = "0.3";
+  t.model = "lps_plastic";
+  t.material_keys = "yield_stress = 4e8\ntangent_modulus = 2e9\ncritical_stretch = 0.01";
+  t.time = time;
+  t.tables = "[mpm]\n\n[hybrid]\n" + hybrid_keys +
+             "\n[[precrack]]\nfrom = [0.0, 0.0100]\nto = [0.008, 0.0100]\n"
+             "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"2.0\"]\n"
+             "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
+             "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
+             "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
+             "\n[output]\nframes = 3\n";
+  return t;
+}
+
+TEST(HybridScene, DefaultsAndKeys) {
+  const auto s = plate("").parse();
+  ASSERT_EQ(s.method, io::Method::hybrid);
+  ASSERT_TRUE(s.hybrid && s.mpm);
+  EXPECT_EQ(s.hybrid->mode, hybrid::Mode::expand_shrink);
+  EXPECT_EQ(s.hybrid->radii.pd_radius, 7.0);
+  EXPECT_EQ(s.hybrid->radii.expand_trigger, 3.0);
+  EXPECT_EQ(s.hybrid->shrink_every, 1);
+  EXPECT_TRUE(s.hybrid->precrack_starts_pd);
+  EXPECT_EQ(s.mpm->constitutive, mpm::MaterialModel::j2);
+
+  const auto k = plate("mode = \"expand\"\npd_radius = 5\nexpand_trigger = 2\nexpand_radius = 6\nkeep_radius = 4\n"
+                       "shrink_every = 3\nprecrack_starts_pd = false\n[hybrid.tips]\ndamage_threshold = 0.3\n"
+                       "match_radius = 2.5\n")
+                     .parse();
+  EXPECT_EQ(k.hybrid->mode, hybrid::Mode::expand);
+  EXPECT_EQ(k.hybrid->radii.pd_radius, 5.0);
+  EXPECT_EQ(k.hybrid->radii.expand_trigger, 2.0);
+  EXPECT_EQ(k.hybrid->radii.expand_radius, 6.0);
+  EXPECT_EQ(k.hybrid->radii.keep_radius, 4.0);
+  EXPECT_EQ(k.hybrid->shrink_every, 3);
+  EXPECT_FALSE(k.hybrid->precrack_starts_pd);
+  EXPECT_EQ(k.hybrid->tips.damage_threshold, 0.3);
+  EXPECT_EQ(k.hybrid->tips.match_radius, 2.5);
+  EXPECT_EQ(k.output.fields, (std::vector<std::string>{"method", "displacement", "velocity", "damage", "von_mises"}));
+
+  // lps goes with MPM's linear elastic law.
+  auto elastic = plate("");
+  elastic.model = "lps";
+  elastic.material_keys = "critical_stretch = 0.01";
+  EXPECT_EQ(elastic.parse().mpm->constitutive, mpm::MaterialModel::linear_elastic);
+}
+
+TEST(HybridScene, RefusesWhatTheRegionsCannotCarry) {
+  auto with_tables = [](const std::string& extra) {
+    auto t = plate("");
+    t.tables += extra;
+    return t;
+  };
+  EXPECT_THROW(with_tables("\n[indenter]\nradius = 0.002\ncenter = [0.01, 0.03]\nvelocity = [0.0, -1.0]\n"
+                           "stiffness = 1e17\n")
+                   .parse(),
+               InputError);
+  EXPECT_THROW(with_tables("\n[crack]\nthreshold = 0.5\n").parse(), InputError);
+  auto adr = plate("", "integrator = \"adr\"");
+  EXPECT_THROW(adr.parse(), InputError);
+}
+
+struct Outcome {
+  RunResult result;
+  std::map<std::string, std::string> last;
+  std::vector<double> method;  // last frame
+  Index particles = 0;
+};
+
+Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
+  const test::ScratchDir scratch("hybrid_run_" + name);
+  const fs::path out = scratch.fresh("out");
+  const auto scene = plate(hybrid_keys).parse(name + ".toml");
+  RunOptions opt;
+  opt.out_dir = out;
+  opt.progress = false;
+  Outcome o;
+  o.result = run_scene(scene, opt);
+  for (const char* f : {"fields.h5", "fields.xdmf", "history.csv", "summary.json"})
+    EXPECT_TRUE(fs::exists(out / f)) << f;
+  o.last = last_history_row(out / "history.csv");
+  const test::FieldsReader fields((out / "fields.h5").string());
+  EXPECT_EQ(fields.frames().size(), 3u);
+  o.method = fields.read(fields.frames().back(), "method");
+  EXPECT_EQ(fields.read(fields.frames().back(), "von_mises").size(), o.method.size());
+  EXPECT_EQ(fields.read(fields.frames().back(), "damage").size(), o.method.size());
+  o.particles = static_cast<Index>(o.method.size());
+  return o;
+}
+
+TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
+  const auto o = run_plate("mode = \"expand_shrink\"\n", "expand_shrink");
+  ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
+  const auto& j = o.result.summary;
+  EXPECT_EQ(j["solver"], "hybrid");
+  EXPECT_EQ(j["mode"], "expand_shrink");
+  EXPECT_EQ(j["status"], "completed");
+  EXPECT_EQ(j["steps"], 200);
+  EXPECT_GT(j["particle_steps"]["pd"].get<double>(), 0.0);   // the pre-crack starts PD
+  EXPECT_GT(j["particle_steps"]["mpm"].get<double>(), 0.0);  // the rest is on the grid
+  for (const char* phase : {"pd", "mpm", "coupling", "regions"})
+    EXPECT_GE(j["wall_time_phases"][phase].get<double>(), 0.0) << phase;
+  EXPECT_TRUE(j["wall_time_phases"].contains("mpm_phases"));
+
+  for (const char* col : {"step", "time", "pd_particles", "transition_particles", "mpm_particles",
+                          "removed_particles", "to_pd", "to_mpm", "expansions", "shrinks", "onsets", "tips",
+                          "tip0_x", "tip3_y", "kinetic_energy", "internal_energy", "momentum_x", "momentum_y"})
+    EXPECT_TRUE(o.last.count(col)) << col;
+  const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
+               mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
+  EXPECT_EQ(pd + tr + mp + rm, static_cast<double>(o.particles));
+  EXPECT_GT(pd, 0.0);
+  EXPECT_GT(mp, 0.0);
+  EXPECT_GT(std::stod(o.last.at("kinetic_energy")), 0.0);
+  // The field agrees with the counts.
+  double pd_field = 0.0;
+  for (double m : o.method) {
+    EXPECT_TRUE(m == 0.0 || m == 1.0 || m == 2.0 || m == 3.0) << m;
+    pd_field += m == 0.0;
+  }
+  EXPECT_EQ(pd_field, pd);
+}
+
+TEST(HybridRun, ModePdIsAllPeridynamics) {
+  const auto o = run_plate("mode = \"pd\"\n", "pd");
+  ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
+  EXPECT_EQ(o.result.summary["mode"], "pd");
+  EXPECT_EQ(o.result.summary["particle_steps"]["mpm"].get<double>(), 0.0);
+  EXPECT_EQ(std::stod(o.last.at("pd_particles")), static_cast<double>(o.particles));
+  EXPECT_EQ(std::stod(o.last.at("mpm_particles")), 0.0);
+  for (double m : o.method) EXPECT_EQ(m, 0.0);
+}
+
+}  // namespace
+}  // namespace pdmpm::sim
