@@ -1,12 +1,29 @@
 #include "solver/sim/geometry_from_scene.hpp"
 
+#include <cmath>
+
+#include "solver/core/error.hpp"
+#include "solver/core/particle_builder.hpp"
+
 namespace pdmpm::sim {
+
+template <int D>
+core::Particles<D> fill_body(const io::Scene& s) {
+  const auto geometry = make_geometry<D>(s.shapes);
+  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
+  auto particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
+  if (particles.n_real == 0)
+    throw InputError(s.file, "shape",
+                     "the shapes contain no lattice site: check their extents against discretization.spacing");
+  return particles;
+}
 
 template <int D>
 core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g) {
   core::Lattice<D> lat;
   lat.spacing = s.spacing;
-  lat.origin = s.lattice_origin ? to_vec<D>(*s.lattice_origin) : Vec<D>(g.bounds().min + Vec<D>::Constant(0.5 * s.spacing));
+  lat.origin =
+      s.lattice_origin ? to_vec<D>(*s.lattice_origin) : Vec<D>(g.bounds().min + Vec<D>::Constant(0.5 * s.spacing));
   return lat;
 }
 
@@ -22,8 +39,10 @@ core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes) {
     } else if constexpr (D == 3) {
       shape = std::make_unique<core::Cylinder>(to_vec<3>(s.center), s.axis, s.radius, s.height);
     }
-    if (s.subtract) g.subtract(std::move(shape));
-    else g.add(std::move(shape));
+    if (s.subtract)
+      g.subtract(std::move(shape));
+    else
+      g.add(std::move(shape));
   }
   return g;
 }
@@ -43,6 +62,9 @@ template core::Geometry<2> make_geometry<2>(const std::vector<io::ShapeSpec>&);
 template core::Geometry<3> make_geometry<3>(const std::vector<io::ShapeSpec>&);
 template std::vector<Index> select_particles<1>(const std::vector<Vec<1>>&, Index, const core::Geometry<1>&, double);
 template std::vector<Index> select_particles<2>(const std::vector<Vec<2>>&, Index, const core::Geometry<2>&, double);
+template core::Particles<1> fill_body<1>(const io::Scene&);
+template core::Particles<2> fill_body<2>(const io::Scene&);
+template core::Particles<3> fill_body<3>(const io::Scene&);
 template core::Lattice<1> make_lattice<1>(const io::Scene&, const core::Geometry<1>&);
 template core::Lattice<2> make_lattice<2>(const io::Scene&, const core::Geometry<2>&);
 template core::Lattice<3> make_lattice<3>(const io::Scene&, const core::Geometry<3>&);

@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "solver/core/lattice.hpp"
+#include "solver/core/particles.hpp"
 #include "solver/core/shapes.hpp"
 #include "solver/io/scene.hpp"
 
@@ -16,6 +17,11 @@ core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes);
 // discretization.lattice_origin.
 template <int D>
 core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g);
+
+// The body's particles: the scene's lattice sites inside its shapes, of volume
+// Δx^D (× thickness in 2D, × area in 1D). InputError when there is none.
+template <int D>
+core::Particles<D> fill_body(const io::Scene& s);
 
 // Real particles whose reference position lies in the region (boundaries included).
 template <int D>

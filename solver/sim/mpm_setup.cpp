@@ -143,12 +143,7 @@ MpmGridSettings<D> translate_mpm(const io::Scene& s) {
 template <int D>
 MpmSetup<D> build_mpm(const io::Scene& s) {
   MpmSetup<D> out;
-  const auto geometry = make_geometry<D>(s.shapes);
-  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
-  out.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
-  if (out.particles.n_real == 0)
-    throw InputError(s.file, "shape",
-                     "the shapes contain no lattice site: check their extents against discretization.spacing");
+  out.particles = fill_body<D>(s);
   for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
   auto grid = translate_mpm<D>(s);
   out.settings = std::move(grid.settings);

@@ -51,12 +51,7 @@ template <int D>
 PdSetup<D> build_pd(const io::Scene& s) {
   PdSetup<D> out;
   auto& sys = out.system;
-  const auto geometry = make_geometry<D>(s.shapes);
-  const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
-  sys.particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
-  if (sys.particles.n_real == 0)
-    throw InputError(s.file, "shape",
-                     "the shapes contain no lattice site: check their extents against discretization.spacing");
+  sys.particles = fill_body<D>(s);
 
   sys.setting = s.setting;
   sys.material = s.material;
