@@ -51,12 +51,12 @@ test::SceneText plate(const std::string& hybrid_keys, const std::string& time = 
   t.material_keys = "yield_stress = 4e8\ntangent_modulus = 2e9\ncritical_stretch = 0.01";
   t.time = time;
   t.tables = "[mpm]\n\n[hybrid]\n" + hybrid_keys +
-             "\n[[precrack]]\nfrom = [0.0, 0.0100]\nto = [0.008, 0.0100]\n"
-             "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"2.0\"]\n"
-             "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
-             "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
-             "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
-             "\n[output]\nframes = 3\n";
+      "\n[[precrack]]\nfrom = [0.0, 0.0100]\nto = [0.008, 0.0100]\n"
+      "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"2.0\"]\n"
+      "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
+      "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
+      "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
+      "\n[output]\nframes = 3\n";
   return t;
 }
 
@@ -71,9 +71,10 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_TRUE(s.hybrid->precrack_starts_pd);
   EXPECT_EQ(s.mpm->constitutive, mpm::MaterialModel::j2);
 
-  const auto k = plate("mode = \"expand\"\npd_radius = 5\nexpand_trigger = 2\nexpand_radius = 6\nkeep_radius = 4\n"
-                       "shrink_every = 3\nprecrack_starts_pd = false\n[hybrid.tips]\ndamage_threshold = 0.3\n"
-                       "match_radius = 2.5\n")
+  const auto k = plate(
+                     "mode = \"expand\"\npd_radius = 5\nexpand_trigger = 2\nexpand_radius = 6\nkeep_radius = 4\n"
+                     "shrink_every = 3\nprecrack_starts_pd = false\n[hybrid.tips]\ndamage_threshold = 0.3\n"
+                     "match_radius = 2.5\n")
                      .parse();
   EXPECT_EQ(k.hybrid->mode, hybrid::Mode::expand);
   EXPECT_EQ(k.hybrid->radii.pd_radius, 5.0);
@@ -137,7 +138,10 @@ Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
 }
 
 TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
-  const auto o = run_plate("mode = \"expand_shrink\"\n", "expand_shrink");
+  // Radii of 1.5–2 δ keep the pre-crack's region inside the plate (7 δ = 21 mm would cover it).
+  const auto o =
+      run_plate("mode = \"expand_shrink\"\npd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n",
+                "expand_shrink");
   ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
   const auto& j = o.result.summary;
   EXPECT_EQ(j["solver"], "hybrid");
@@ -150,9 +154,9 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
     EXPECT_GE(j["wall_time_phases"][phase].get<double>(), 0.0) << phase;
   EXPECT_TRUE(j["wall_time_phases"].contains("mpm_phases"));
 
-  for (const char* col : {"step", "time", "pd_particles", "transition_particles", "mpm_particles",
-                          "removed_particles", "to_pd", "to_mpm", "expansions", "shrinks", "onsets", "tips",
-                          "tip0_x", "tip3_y", "kinetic_energy", "internal_energy", "momentum_x", "momentum_y"})
+  for (const char* col : {"step", "time", "pd_particles", "transition_particles", "mpm_particles", "removed_particles",
+                          "to_pd", "to_mpm", "expansions", "shrinks", "onsets", "tips", "tip0_x", "tip3_y",
+                          "kinetic_energy", "internal_energy", "momentum_x", "momentum_y"})
     EXPECT_TRUE(o.last.count(col)) << col;
   const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
                mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
