@@ -57,7 +57,12 @@ void HybridRun<D>::choose_time_step() {
   if (!std::isfinite(dt_pd_))
     throw InputError(scene_.file, "shape",
                      "no particle has a bond: the body falls apart at once (horizon too small or body too thin)");
+  // After start(): the grid's step for the particles it carries at t = 0. Mode pd
+  // has none and steps as the PD run does; otherwise a grid with no particle yet
+  // still gets the elastic CFL step, since particles can convert to it.
   dt_cfl0_ = h_.mpm().stable_dt();
+  if (!std::isfinite(dt_cfl0_) && h_.settings().mode != hybrid::Mode::pd)
+    dt_cfl0_ = h_.mpm().cell_size() / std::sqrt(scene_.material.wave_modulus(scene_.setting) / scene_.material.rho);
   const double dt = scene_.time.dt ? *scene_.time.dt : scene_.time.safety_factor * std::min(dt_pd_, dt_cfl0_);
   const StepPlan plan = plan_steps(scene_.time, dt);
   dt_ = plan.dt;
@@ -248,9 +253,9 @@ nlohmann::json HybridRun<D>::summary() const {
 
 template <int D>
 RunResult HybridRun<D>::run() {
+  h_.start();
   choose_time_step();
   start_outputs();
-  h_.start();
   kinetic_ = h_.kinetic_energy();
   internal_ = h_.internal_energy();
   initial_energy_ = kinetic_ + internal_;
