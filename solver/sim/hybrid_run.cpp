@@ -25,6 +25,7 @@ class HybridRun {
   RunResult run();
 
  private:
+  void pd_stable_step();
   void choose_time_step();
   void start_outputs();
   void step(bool energy);
@@ -49,14 +50,19 @@ class HybridRun {
   std::vector<Vec<D>> u_before_;
 };
 
+// Before start(): every bond of the body counts (any particle may become PD).
 template <int D>
-void HybridRun<D>::choose_time_step() {
+void HybridRun<D>::pd_stable_step() {
   auto& sys = s_.pd.system;
   dt_pd_ = scene_.time.estimate == io::StableStepEstimate::lanczos ? time::lanczos_step<D>(sys, *s_.pd.model).dt
                                                                    : time::silling_askari_step<D>(sys, *s_.pd.model);
   if (!std::isfinite(dt_pd_))
     throw InputError(scene_.file, "shape",
                      "no particle has a bond: the body falls apart at once (horizon too small or body too thin)");
+}
+
+template <int D>
+void HybridRun<D>::choose_time_step() {
   // After start(): the grid's step for the particles it carries at t = 0. Mode pd
   // has none and steps as the PD run does; otherwise a grid with no particle yet
   // still gets the elastic CFL step, since particles can convert to it.
@@ -253,6 +259,7 @@ nlohmann::json HybridRun<D>::summary() const {
 
 template <int D>
 RunResult HybridRun<D>::run() {
+  pd_stable_step();
   h_.start();
   choose_time_step();
   start_outputs();
