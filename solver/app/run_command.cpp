@@ -25,10 +25,10 @@ int run_command(const RunArgs& args) {
       return r.exit_code;
     }
     if (!args.quiet) {
-      const std::string rate = s["solver"] == "mpm"
-                                   ? fmt::format("{:.3g} particle-steps/s", s["particle_steps_per_second"].get<double>())
-                                   : fmt::format("{} bonds, {:.3g} bond updates/s", s["bonds"].get<long>(),
-                                                 s["bond_updates_per_second"].get<double>());
+      const std::string rate = !s.contains("bond_updates_per_second")  // mpm, hybrid
+          ? fmt::format("{:.3g} particle-steps/s", s["particle_steps_per_second"].get<double>())
+          : fmt::format("{} bonds, {:.3g} bond updates/s", s["bonds"].get<long>(),
+                        s["bond_updates_per_second"].get<double>());
       std::cerr << fmt::format("pdmpm: {} done: {} particles, {} steps of {:.4g} s in {:.3g} s ({}) → {}\n", scene.id,
                                s["particles"].get<long>(), s["steps"].get<long>(), s["dt"].get<double>(),
                                s["wall_time_s"].get<double>(), rate, opt.out_dir.string());
