@@ -32,28 +32,19 @@ void to_pd(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>
 }
 
 template <int D>
-mpm::PointHistory pd_plastic_history(const pd::System<D>& sys, const pd::Model<D>& model,
-                                     const mpm::Simulation<D>& mpm, Index i) {
-  if constexpr (D >= 2)
-    if (const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model))
-      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) return *fitted;
-  return mpm.state().history[i];
-}
-
-template <int D>
 void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i) {
   const Mat<D> F = bond_deformation_gradient<D>(sys, i).value_or(mpm.state().F[i]);
-  mpm.set_state(i, F, pd_plastic_history<D>(sys, model, mpm, i));
+  mpm::PointHistory h = mpm.state().history[i];
+  if constexpr (D >= 2)
+    if (const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model))
+      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) h = *fitted;
+  mpm.set_state(i, F, h);
 }
 
 template std::optional<Mat<2>> bond_deformation_gradient<2>(const pd::System<2>&, Index);
 template std::optional<Mat<3>> bond_deformation_gradient<3>(const pd::System<3>&, Index);
 template void to_pd<2>(const mpm::Simulation<2>&, const pd::System<2>&, pd::Model<2>&, Index);
 template void to_pd<3>(const mpm::Simulation<3>&, const pd::System<3>&, pd::Model<3>&, Index);
-template mpm::PointHistory pd_plastic_history<2>(const pd::System<2>&, const pd::Model<2>&, const mpm::Simulation<2>&,
-                                                  Index);
-template mpm::PointHistory pd_plastic_history<3>(const pd::System<3>&, const pd::Model<3>&, const mpm::Simulation<3>&,
-                                                  Index);
 template void to_mpm<2>(const pd::System<2>&, const pd::Model<2>&, mpm::Simulation<2>&, Index);
 template void to_mpm<3>(const pd::System<3>&, const pd::Model<3>&, mpm::Simulation<3>&, Index);
 

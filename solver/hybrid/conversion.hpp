@@ -25,12 +25,6 @@ namespace pdmpm::hybrid {
 template <int D>
 std::optional<Mat<D>> bond_deformation_gradient(const pd::System<D>& sys, Index i);
 
-// The plastic state of PD particle i in MPM's terms: fitted from its bonds when the
-// model is plastic and the fit exists, else what MPM last had.
-template <int D>
-mpm::PointHistory pd_plastic_history(const pd::System<D>& sys, const pd::Model<D>& model,
-                                     const mpm::Simulation<D>& mpm, Index i);
-
 template <int D>
 void to_pd(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>& model, Index i);
 

@@ -17,25 +17,8 @@ constexpr std::array<EnumName<Mode>, 3> names(Mode) {
   return {{{Mode::pd, "pd"}, {Mode::expand, "expand"}, {Mode::expand_shrink, "expand_shrink"}}};
 }
 
-// How PD and the grid meet (docs/models/hybrid.md):
-//   paper       (eq 10) transition particles are virtual PD particles with the bonds to PD
-//               particles only; those pair forces enter the grid as external forces and
-//               their reactions act on the PD particles — momentum exact, but the grid
-//               sees a hole where the PD region is and the transition particles' state
-//               comes from half a family: an affine motion is not in equilibrium;
-//   consistent  transition particles keep their whole family (so the PD particles see
-//               full-family force states), the grid feels the stress of the PD particles
-//               next to it (mpm::Simulation::set_embedded_stress: no hole) and takes no
-//               PD force: an affine motion is in equilibrium; momentum is exchanged
-//               through two discretisations of one traction and is not exact.
-enum class Coupling { paper, consistent };
-constexpr std::array<EnumName<Coupling>, 2> names(Coupling) {
-  return {{{Coupling::paper, "paper"}, {Coupling::consistent, "consistent"}}};
-}
-
 struct Settings {
   Mode mode = Mode::expand_shrink;
-  Coupling coupling = Coupling::consistent;
   RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
   int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
   CrackTipSettings tips;

@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "solver/core/error.hpp"
 #include "solver/hybrid/conversion.hpp"
@@ -35,12 +34,6 @@ Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const 
       map_(pd.particles(), horizon_ratio(pd.system()), bond_reach(pd.system()), settings.radii),
       removed_(static_cast<std::size_t>(pd.particles().n_real), 0) {
   settings_.validate();
-  pd_.system().full_transition_families = settings_.coupling == Coupling::consistent;
-  // Two particles share a grid node when each axis distance is below twice the
-  // support half-width (≤ 1.5 h for every shape function, plus the GIMP half-width
-  // ≤ Δx/2); the ball covers that box's diagonal.
-  const double h = mpm.cell_size() / pd.system().spacing();
-  grid_reach_ = core::Stencil<D>::build(std::sqrt(double(D)) * 2.0 * (1.5 * h + 0.5));
   if (&mpm.particles() != &pd.particles())
     throw RunError("hybrid: the PD body and the MPM simulation must share one particle store");
   if (pd.particles().n_ghost() > 0)
@@ -72,12 +65,10 @@ void Simulation<D>::start(std::span<const Index> initial_pd) {
   }
   pd_.refresh_kinds();
   mpm_.refresh_active();
-  find_embedded();
   pd_.boundaries().apply_displacement(p, 0.0, 0.0);
   p.update_ghosts();
   evaluate_forces(0.0, true);
   pd_.accept();
-  embed_stresses();
 }
 
 template <int D>
@@ -117,8 +108,6 @@ void Simulation<D>::step(double dt, bool energy) {
   bcs.apply_velocity(p, t1);
   pd_.accept();
   lap(seconds_.pd);
-  embed_stresses();
-  lap(seconds_.coupling);
 }
 
 // PD forces on PD and transition particles at time t; each transition particle's
@@ -141,10 +130,9 @@ void Simulation<D>::evaluate_forces(double t, bool energy) {
   // pd::Simulation wrote body forces and tractions into b of every particle: the
   // grid applies its own to MPM particles, so they keep only the coupling force.
   coupled_.clear();
-  const bool paper = settings_.coupling == Coupling::paper;
   for (Index i = 0; i < p.n_real; ++i) {
     if (p.kind[i] == ParticleKind::pd) continue;
-    if (paper && p.kind[i] == ParticleKind::transition) {
+    if (p.kind[i] == ParticleKind::transition) {
       p.b[i] = p.f[i];
       coupled_.push_back(i);
     } else {
@@ -154,27 +142,17 @@ void Simulation<D>::evaluate_forces(double t, bool energy) {
   seconds_.coupling += omp_get_wtime() - t1;
 }
 
-// The particles with a bond broken by the last evaluation (expansion triggers). A bond
-// with no PD end (consistent coupling: between a transition particle and a grid
-// particle) is not PD material but the grid's, whose displacement field is not smooth
-// on the scale of one spacing: such a break is undone, or every particle the region
-// later takes in would arrive damaged.
 template <int D>
-std::vector<Index> Simulation<D>::bonds_broken_by_last_evaluation() {
-  auto& sys = pd_.system();
-  const auto& kind = sys.particles.kind;
+std::vector<Index> Simulation<D>::bonds_broken_by_last_evaluation() const {
+  const auto& sys = pd_.system();
   std::vector<Index> owners;
   if (sys.bonds.pending_breaks == 0) return owners;
   auto visit = [&](Index i) {
-    bool any = false;
-    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
-      if (!sys.bonds.broken(b) || (sys.bonds.flags.committed[b] & pd::kBondBroken)) continue;
-      if (kind[i] != ParticleKind::pd && sys.kind(sys.families.neighbor[b]) != ParticleKind::pd)
-        sys.bonds.flags.trial[b] &= static_cast<std::uint8_t>(~pd::kBondBroken);
-      else
-        any = true;
-    }
-    if (any) owners.push_back(i);
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+      if (sys.bonds.broken(b) && !(sys.bonds.flags.committed[b] & pd::kBondBroken)) {
+        owners.push_back(i);
+        return;
+      }
   };
   if (sys.owners.empty())
     for (Index i = 0; i < sys.n_real(); ++i) visit(i);
@@ -243,47 +221,6 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
   if (!changed) return;
   pd_.refresh_kinds();
   mpm_.refresh_active();
-  find_embedded();
-}
-
-// Consistent coupling: the PD particles that share a grid node with a grid particle.
-// Grid particles nearest the PD region are transition particles, so looking around
-// those finds them all.
-template <int D>
-void Simulation<D>::find_embedded() {
-  embedded_.clear();
-  if (settings_.coupling != Coupling::consistent) return;
-  const auto& p = pd_.particles();
-  std::vector<std::uint8_t> mark(static_cast<std::size_t>(p.n_real), 0);
-  for (Index i = 0; i < p.n_real; ++i) {
-    if (p.kind[i] != ParticleKind::transition) continue;
-    for (const auto& off : grid_reach_.offset) {
-      const Index j = map_.find(p.site[i] + off);
-      if (j >= 0 && j < p.n_real && p.kind[j] == ParticleKind::pd) mark[j] = 1;
-    }
-  }
-  for (Index i = 0; i < p.n_real; ++i)
-    if (mark[i]) embedded_.push_back(i);
-}
-
-// The stress MPM's law gives each embedded PD particle for its bond deformation
-// gradient and plastic state (conversion.hpp), for the next grid step.
-template <int D>
-void Simulation<D>::embed_stresses() {
-  if (settings_.coupling != Coupling::consistent) return;
-  const auto& sys = pd_.system();
-  std::vector<Index> points;
-  std::vector<Mat<D>> Vtau;
-  points.reserve(embedded_.size());
-  Vtau.reserve(embedded_.size());
-  for (const Index i : embedded_) {
-    const auto F = bond_deformation_gradient<D>(sys, i);
-    if (!F) continue;  // too few bonds left to say: it carries no stress to the grid
-    const Mat<3> tau = mpm_.kirchhoff_for(i, *F, pd_plastic_history(sys, pd_.model(), mpm_, i));
-    points.push_back(i);
-    Vtau.push_back(sys.particles.volume[i] * tau.template topLeftCorner<D, D>());
-  }
-  mpm_.set_embedded_stress(std::move(points), std::move(Vtau));
 }
 
 // No healing: a PD particle with a broken bond stays PD, so both faces of a crack

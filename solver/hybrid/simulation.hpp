@@ -19,12 +19,10 @@
 //            evaluation, shrink (eq 12) after every i_crit expansions around the
 //            crack tips (eqs 13–15); states converted both ways (conversion.hpp)
 //   PD     forces at tⁿ⁺¹ on PD and transition particles, coupling into the grid's
-//          external force (paper coupling), half kick, velocity BCs, commit the bond
-//          state; consistent coupling: the stress of the PD particles next to the grid
-//          particles, for the next grid step.
-// Paper coupling: every pair force of an evaluation gives both its ends the impulse Δt
-// (half kicks on the PD side, the next grid step on the transition side), so with no
-// external load  P + ½Δt Σ_transition V f  is conserved to round-off (momentum()).
+//          external force, half kick, velocity BCs, commit the bond state.
+// Every pair force of an evaluation gives both its ends the impulse Δt (half kicks
+// on the PD side, the next grid step on the transition side), so with no external
+// load  P + ½Δt Σ_transition V f  is conserved to round-off (momentum()).
 // Particles converted during a step take part in the evaluation that ends it, so
 // they start the next step with the forces of their new method (the paper: converted
 // at step m, PD from step m + 1). Conversions need no acceleration (the paper carries
@@ -113,10 +111,8 @@ class Simulation {
   void manage_regions();
   void convert(const std::vector<core::ParticleKind>& before);
   void evaluate_forces(double t, bool energy);
-  std::vector<Index> bonds_broken_by_last_evaluation();
+  std::vector<Index> bonds_broken_by_last_evaluation() const;
   std::vector<std::uint8_t> damaged_pd_particles() const;
-  void find_embedded();
-  void embed_stresses();
 
   pd::Simulation<D>& pd_;
   mpm::Simulation<D>& mpm_;
@@ -126,9 +122,7 @@ class Simulation {
   std::vector<CrackTip<D>> tips_;
   int next_tip_id_ = 0;
   std::vector<Index> last_breaks_;  // particles with a bond broken by the last evaluation
-  std::vector<Index> coupled_;      // transition particles carrying a coupling force in b (paper coupling)
-  core::Stencil<D> grid_reach_;     // lattice offsets within which two particles can share a grid node
-  std::vector<Index> embedded_;     // PD particles whose stress the grid feels (consistent coupling)
+  std::vector<Index> coupled_;      // transition particles carrying a coupling force in b
   int expansions_since_shrink_ = 0;
   double dt_ = 0.0, time_ = 0.0, base_time_ = 0.0;
   std::int64_t base_steps_ = 0, steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;

@@ -238,17 +238,6 @@ void Simulation<D>::scatter(Scatter what) {
       }
     });
   });
-  if (what.forces)  // few points, serial: the order of the sums is fixed
-    for (std::size_t k = 0; k < embedded_.size(); ++k) {
-      const Index p = embedded_[k];
-      const Stencil<D> st =
-          make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
-      if (!inside_grid(st)) continue;  // nothing of the body is there to feel it
-      const Mat<D>& Vtau = embedded_volume_kirchhoff_[k];
-      for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) {
-        grid_.force_internal[node] -= Vtau * g;
-      });
-    }
   if (what.momentum) boundary_.fold(what.mass ? &grid_.mass : nullptr, &grid_.momentum);
   if (what.forces) boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
 }
@@ -547,18 +536,6 @@ void Simulation<D>::set_state(Index p, const Mat<D>& F, const PointHistory& hist
   state_.history[p] = history;
   state_.eq_plastic_hardening[p] = history.eq_plastic_strain;
   set_deformation_gradient(p, F);
-}
-
-template <int D>
-Mat<3> Simulation<D>::kirchhoff_for(Index p, const Mat<D>& F, PointHistory history) const {
-  return constitutive_.update(F, history, state_.eq_plastic_hardening[p] - history.eq_plastic_strain).kirchhoff;
-}
-
-template <int D>
-void Simulation<D>::set_embedded_stress(std::vector<Index> points, std::vector<Mat<D>> volume_kirchhoff) {
-  if (points.size() != volume_kirchhoff.size()) throw RunError("MPM: one stress per embedded point expected");
-  embedded_ = std::move(points);
-  embedded_volume_kirchhoff_ = std::move(volume_kirchhoff);
 }
 
 template <int D>

@@ -114,16 +114,6 @@ class Simulation {
   // Set a particle's plastic history, then its deformation gradient (a particle the
   // hybrid hands back from PD; solver/hybrid/conversion.hpp).
   void set_state(Index p, const Mat<D>& F, const PointHistory& history);
-  // Kirchhoff stress the constitutive law gives particle p for F and a plastic
-  // history, without changing the particle (the history is a copy).
-  Mat<3> kirchhoff_for(Index p, const Mat<D>& F, PointHistory history) const;
-
-  // Stress carried by points the step does not integrate (the hybrid's PD particles
-  // next to the grid's particles): each adds −V τ ∇S at its current position to the
-  // internal nodal force of every following step, so the grid sees no hole where the
-  // PD region is. `volume_kirchhoff` is V₀ τ (in-plane block in 2D). Cleared by an
-  // empty call.
-  void set_embedded_stress(std::vector<Index> points, std::vector<Mat<D>> volume_kirchhoff);
   // Call after particles were added or changed kind outside the simulation:
   // sizes the MPM state and initialises new slots.
   void sync_particles();
@@ -160,8 +150,6 @@ class Simulation {
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;
-  std::vector<Index> embedded_;                 // set_embedded_stress
-  std::vector<Mat<D>> embedded_volume_kirchhoff_;
   std::vector<Vec<D>> damping_, velocity_free_;  // per node this step: damping force, v before constraints
   StepPhaseSeconds phase_seconds_;
   std::vector<std::uint8_t> failed_this_step_;

@@ -35,13 +35,8 @@ enum class BondSet { live, reference };
 // MPM particle inside a PD particle's horizon, a virtual PD particle).
 inline bool pd_like(core::ParticleKind k) { return k == core::ParticleKind::pd || k == core::ParticleKind::transition; }
 // A bond acts when both ends are PD-like and at least one is PD: bonds between
-// two transition particles belong to the grid, not to PD (the hybrid's paper
-// coupling). With `full_transition_families` (its consistent coupling) every bond
-// of a transition particle acts, so its dilatation, weighted volume and plastic
-// state are those of a whole family, as a PD particle's would be.
-inline bool bond_active(core::ParticleKind a, core::ParticleKind b, bool full_transition_families = false) {
-  if (full_transition_families)
-    return a != core::ParticleKind::removed && b != core::ParticleKind::removed && (pd_like(a) || pd_like(b));
+// two transition particles belong to the grid, not to PD.
+inline bool bond_active(core::ParticleKind a, core::ParticleKind b) {
   return pd_like(a) && pd_like(b) && (a == core::ParticleKind::pd || b == core::ParticleKind::pd);
 }
 

@@ -42,8 +42,6 @@ struct System {
   // κ chosen so the full stencil's fourth bond moment is isotropic (docs/models/lps_plastic.md);
   // false: the plain lattice sums, whose deviatoric response is cubic.
   bool isotropic_deviatoric = false;
-  // Hybrid, consistent coupling: transition particles keep their whole family (pd::bond_active).
-  bool full_transition_families = false;
 
   double spacing() const { return particles.lattice.spacing; }
   Index n_real() const { return particles.n_real; }
@@ -91,7 +89,7 @@ struct System {
       const auto ki = particles.kind[i];
       bool moved = false;
       for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
-        const bool active = bond_active(ki, kind(families.neighbor[b]), full_transition_families);
+        const bool active = bond_active(ki, kind(families.neighbor[b]));
         moved = moved || active != !(bonds.flags.trial[b] & kBondInactive);
         bonds.set_active(b, active);
       }

@@ -1,13 +1,20 @@
-// Gates of the adaptive SBPD–MPM hybrid (Noorian et al., adaptive SBPD–MPM §2):
-// interface consistency under affine motion (ghost forces), …
+// Gates of the adaptive SBPD–MPM hybrid (Noorian et al., adaptive SBPD–MPM §2,
+// docs/models/hybrid.md): its limits (no PD particle: the MPM run; mode pd: the PD
+// run), momentum across the coupling, a yielded particle's state across a
+// conversion, thread invariance with regions moving, and the measurements not yet
+// gated (ghost forces under affine motion, an edge crack against the all-PD run).
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <iostream>
+#include <limits>
 
-#include "verification/support/gate.hpp"
+#include "solver/hybrid/conversion.hpp"
 #include "solver/pd/damage.hpp"
+#include "solver/sim/mpm_setup.hpp"
+#include "solver/time/velocity_verlet.hpp"
+#include "verification/support/gate.hpp"
 #include "verification/support/hybrid_body.hpp"
 
 namespace pdmpm {
@@ -18,218 +25,388 @@ using test::Compare;
 using test::Gate;
 
 const char* kProblem = "hybrid";
+const char* kSource = "[noorian2024] §2 (coupling eq 10, regions eqs 11–12); docs/models/hybrid.md";
 constexpr double kRho = 7850.0, kDx = 1e-3;
+constexpr double kDt = 2e-8;  // below both stable steps (PD ≈ 6e-8 s, grid ≈ 1.6e-7 s at Δx = 1 mm)
 
-struct GhostForces {
-  double pd = 0.0, transition = 0.0, mpm = 0.0;  // max |a| / a_scale over interior particles of each kind
-  double pd_only = 0.0, mpm_only = 0.0;          // the same body all PD / all MPM
-};
-
-// Accelerations of an affine displacement u = H x (no velocity) after one tiny step,
-// relative to a_scale = |σ|/(ρ Δx), the acceleration of a particle on a free face carrying
-// the affine state's traction. Particles within 4Δx of the plate's edges are skipped (the
-// free edges are not in equilibrium under an affine field).
-GhostForces ghost_forces(const Mat<2>& H, hybrid::Coupling coupling) {
-  GhostForces g;
-  const Vec<2> size(0.04, 0.03), centre = 0.5 * size;
-  auto measure = [&](hybrid::Mode mode, bool with_pd, double& pd, double& tr, double& mp) {
-    hybrid::Settings s;
-    s.mode = mode;
-    s.coupling = coupling;
-    test::HybridBody body(s, {.size = {size[0], size[1]}});
-    auto& p = body.particles();
-    std::vector<Index> disc;
-    for (Index i = 0; i < p.n_real; ++i) {
-      p.u[i] = H * p.x0[i];
-      body.mpm->set_deformation_gradient(i, Mat<2>::Identity() + H);
-      if (with_pd && (p.x0[i] - centre).norm() < 7e-3) disc.push_back(i);
-    }
-    body.hybrid->start(disc);
-    const double sigma = body.mpm->state().stress[0].norm();
-    const double a_scale = sigma / (kRho * kDx);
-    const double dt = 1e-13;
-    body.hybrid->step(dt);
-    for (Index i = 0; i < p.n_real; ++i) {
-      const Vec<2> x = p.x0[i];
-      if (x[0] < 4 * kDx || x[1] < 4 * kDx || x[0] > size[0] - 4 * kDx || x[1] > size[1] - 4 * kDx) continue;
-      const double a = p.v[i].norm() / dt / a_scale;
-      switch (p.kind[i]) {
-        case ParticleKind::pd: pd = std::max(pd, a); break;
-        case ParticleKind::transition: tr = std::max(tr, a); break;
-        default: mp = std::max(mp, a);
-      }
-    }
-  };
-  double unused = 0.0;
-  measure(hybrid::Mode::expand, true, g.pd, g.transition, g.mpm);
-  measure(hybrid::Mode::pd, false, g.pd_only, unused, unused);
-  measure(hybrid::Mode::expand, false, unused, unused, g.mpm_only);
-  return g;
-}
-
-TEST(FastHybrid, InterfaceGhostForcesUnderAffineMotion) {
-  Mat<2> stretch, shear;
-  stretch << 1e-4, 0.0, 0.0, -0.3e-4;
-  shear << 0.0, 1e-4, 1e-4, 0.0;
-  for (auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::consistent})
-  for (const auto& [label, H] : {std::pair{"stretch", stretch}, std::pair{"shear", shear}}) {
-    const GhostForces g = ghost_forces(H, coupling);
-    std::cout << name(coupling) << " " << label << ": PD " << g.pd << " transition " << g.transition << " MPM " << g.mpm << " | all PD "
-              << g.pd_only << " all MPM " << g.mpm_only << "\n";
+// A smooth velocity field, large enough to yield within a hundred steps.
+void kick_field(core::Particles<2>& p) {
+  for (Index i = 0; i < p.n_real; ++i) {
+    const Vec<2> x = p.x0[i];
+    p.v[i] = Vec<2>(20.0 * std::sin(300 * x[1]) + 5.0, 15.0 * std::cos(250 * x[0]));
   }
 }
 
+// Particles whose displacement or velocity differ in any bit.
+Index differing(const core::Particles<2>& a, const core::Particles<2>& b) {
+  Index n = 0;
+  for (Index i = 0; i < a.n_real; ++i) n += a.u[i] != b.u[i] || a.v[i] != b.v[i];
+  return n;
+}
 
-// A brittle edge crack (critical stretch) in a plate pulled at both edges: the same
-// scene in the three modes. The crack runs through PD in every mode; in expand and
-// expand_shrink the PD region has to follow it.
+TEST(FastHybrid, WithNoPdParticleItIsThePureMpmRunBitwise) {
+  const test::HybridPlate plate;
+  auto mpm_setup = sim::build_mpm<2>(plate.scene("mpm"));
+  kick_field(mpm_setup.particles);
+  mpm::Simulation<2> alone(mpm_setup.settings, mpm_setup.particles);
+  test::HybridBody body(hybrid::Settings{}, plate);
+  kick_field(body.particles());
+  body.hybrid->start();
+  ASSERT_EQ(body.hybrid->counts().mpm, body.particles().n_real);
+  for (int s = 0; s < 100; ++s) {
+    alone.step(kDt);
+    body.hybrid->step(kDt);
+  }
+  double eq = 0.0;
+  for (Index i = 0; i < body.particles().n_real; ++i) eq = std::max(eq, body.mpm->eq_plastic_strain(i));
+  EXPECT_GT(eq, 0.0) << "the run must yield, or J2 is not exercised";
+  test::record_gate(Gate{.id = "hybrid.limit.mpm_bitwise",
+                         .claim = "a hybrid run in which no particle becomes PD shall equal the pure MPM run bitwise "
+                                  "(GIMP/MUSL/J2 plate, yielding, 100 steps; particles differing in any bit of u or v)",
+                         .measured = static_cast<double>(differing(body.particles(), mpm_setup.particles)),
+                         .expected = 0.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "exact: with no PD particle the PD side evaluates nothing and the grid "
+                                             "step is MPM's own",
+                         .source = kSource,
+                         .problem = kProblem});
+}
+
+TEST(FastHybrid, ModePdIsThePurePdRunBitwise) {
+  // A pre-crack and a critical stretch, so bond breaking is part of the comparison.
+  const test::HybridPlate plate{.pd_tables = "[[precrack]]\nfrom = [0.0, 0.0075]\nto = [0.01, 0.0075]\n",
+                                .pd_material_keys = "critical_stretch = 0.002"};
+  auto pd_alone = sim::build_pd<2>(plate.scene("pd"));
+  kick_field(pd_alone.system.particles);
+  auto alone = sim::make_simulation(pd_alone);
+  time::VelocityVerlet<2> verlet(alone, kDt);
+  verlet.start();
+  hybrid::Settings settings;
+  settings.mode = hybrid::Mode::pd;
+  test::HybridBody body(settings, plate);
+  kick_field(body.particles());
+  body.hybrid->start();
+  ASSERT_EQ(body.hybrid->counts().pd, body.particles().n_real);
+  for (int s = 0; s < 100; ++s) {
+    verlet.step(s % 10 == 0);
+    body.hybrid->step(kDt, s % 10 == 0);
+  }
+  EXPECT_GT(alone.broken_bonds(), 0) << "bonds must break, or breaking is not compared";
+  EXPECT_EQ(body.hybrid->internal_energy(), alone.internal_energy());
+  test::record_gate(Gate{.id = "hybrid.limit.pd_bitwise",
+                         .claim = "a hybrid run in mode \"pd\" shall equal the pure PD run (velocity Verlet, "
+                                  "lps_plastic, pre-crack, critical stretch) bitwise over 100 steps",
+                         .measured = static_cast<double>(differing(body.particles(), pd_alone.system.particles)),
+                         .expected = 0.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "exact: the hybrid's step is velocity Verlet's sequence of operations",
+                         .source = kSource,
+                         .problem = kProblem});
+}
+
+TEST(FastHybrid, CouplingConservesMomentum) {
+  // The pre-crack's faces start PD with a region of R_pd = 1.5δ around them; the rest is
+  // transition and MPM. Free body, no load: P + ½Δt Σ V f_transition is constant.
+  hybrid::Settings settings;
+  settings.mode = hybrid::Mode::expand;
+  settings.radii = {.pd_radius = 1.5, .expand_trigger = 0.5, .expand_radius = 1.0, .keep_radius = 1.0};
+  test::HybridBody body(settings, {.pd_tables = "[[precrack]]\nfrom = [0.012, 0.0075]\nto = [0.018, 0.0075]\n"});
+  kick_field(body.particles());
+  body.hybrid->start();
+  const hybrid::KindCounts c = body.hybrid->counts();
+  ASSERT_GT(c.pd, 0);
+  ASSERT_GT(c.transition, 0);
+  ASSERT_GT(c.mpm, 0);
+  const Vec<2> p0 = body.hybrid->momentum();
+  double scale = 0.0;  // Σ m|v|: what round-off in a momentum sum is relative to
+  for (Index i = 0; i < body.particles().n_real; ++i)
+    scale += kRho * body.particles().volume[i] * body.particles().v[i].norm();
+  double worst = 0.0;
+  for (int s = 0; s < 200; ++s) {
+    body.hybrid->step(kDt);
+    worst = std::max(worst, (body.hybrid->momentum() - p0).norm() / scale);
+  }
+  test::record_gate(Gate{.id = "hybrid.momentum.coupling",
+                         .claim = "the paper's coupling (PD pair forces of transition particles into the grid, "
+                                  "reactions on the PD particles) shall conserve linear momentum over 200 steps of a "
+                                  "free PD | transition | MPM plate (drift relative to Σ m|v|)",
+                         .measured = worst,
+                         .expected = 1e-12,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "round-off of ~10⁴-term sums per step over 200 steps: 1e-12 leaves "
+                                             "three decades above the measured 1e-15",
+                         .source = kSource,
+                         .problem = kProblem});
+}
+
+TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
+  test::HybridBody body(hybrid::Settings{});
+  auto& p = body.particles();
+  body.hybrid->start();
+  Mat<2> F;
+  F << 1.003, 0.001, 0.0005, 0.999;
+  for (Index i = 0; i < p.n_real; ++i) {
+    p.u[i] = (F - Mat<2>::Identity()) * p.x0[i];
+    body.mpm->set_deformation_gradient(i, F);
+  }
+  Index probe = -1;  // an interior particle, far from every face
+  for (Index i = 0; i < p.n_real; ++i)
+    if ((p.x0[i] - Vec<2>(0.015, 0.0075)).norm() < 0.6e-3) probe = i;
+  ASSERT_GE(probe, 0);
+  const Mat<3> stress0 = body.mpm->state().stress[probe];
+  const mpm::PointHistory h0 = body.mpm->state().history[probe];
+  ASSERT_GT(h0.eq_plastic_strain, 1e-3) << "the block must have yielded";
+
+  for (Index i = 0; i < p.n_real; ++i) p.kind[i] = ParticleKind::pd;
+  for (Index i = 0; i < p.n_real; ++i) hybrid::to_pd<2>(*body.mpm, body.pd_setup.system, body.pd->model(), i);
+  body.pd->refresh_kinds();
+  body.pd->internal_forces(false);
+  body.pd->accept();
+  for (Index i = 0; i < p.n_real; ++i) hybrid::to_mpm<2>(body.pd_setup.system, body.pd->model(), *body.mpm, i);
+  const auto Fpd = hybrid::bond_deformation_gradient<2>(body.pd_setup.system, probe);
+  ASSERT_TRUE(Fpd.has_value());
+  EXPECT_LT((*Fpd - F).norm(), 1e-12) << "F from bonds is exact for an affine motion";
+
+  const double stress_change = (body.mpm->state().stress[probe] - stress0).norm() / stress0.norm();
+  test::record_gate(Gate{.id = "hybrid.conversion.stress",
+                         .claim = "a homogeneously stretched, yielded block (ε̄_p = 1.9e-3) converted MPM → PD → MPM "
+                                  "shall keep its stress within 1 % (interior particle)",
+                         .measured = stress_change,
+                         .expected = 0.01,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the issue's bound; the PD force state is exact only to first order in "
+                                             "the strain and its bond extensions are not MPM's log strain",
+                         .source = kSource,
+                         .problem = kProblem});
+  // The plastic strain may move by what the 1 % stress budget moves it on the hardening
+  // line, 0.01 σ_eq/(3G + H): the PD evaluation in between flows a little further.
+  const double G = 200e9 / 2.6, H = 200e9 * 2e9 / (200e9 - 2e9);
+  const double budget = 0.01 * body.mpm->von_mises(probe) / (3.0 * G + H);
+  const mpm::PointHistory h1 = body.mpm->state().history[probe];
+  EXPECT_LT((h1.plastic_strain - h0.plastic_strain).norm(), std::sqrt(1.5) * budget);
+  test::record_gate(Gate{.id = "hybrid.conversion.plastic_strain",
+                         .claim = "the same round trip shall keep ε̄_p within 0.01 σ_eq/(3G + H), the plastic strain "
+                                  "a 1 % stress error moves on the hardening line",
+                         .measured = std::abs(h1.eq_plastic_strain - h0.eq_plastic_strain),
+                         .expected = budget,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "consistent with the stress gate's 1 %",
+                         .source = kSource,
+                         .problem = kProblem});
+}
+
+// A brittle edge crack (critical stretch, no yield) in a plate pulled at both edges
+// (velocity ramped over 10 µs): the same scene in the three modes.
 struct CrackRun {
-  std::vector<double> t, tip_x;  // the furthest tip's x (m) against time
-  std::vector<double> damage;    // per particle at the end
+  std::vector<double> t, front_x;  // furthest particle with φ > 0.35 (m)
+  std::vector<double> tip_gap;     // distance from that particle to the nearest tracked tip (m)
+  std::vector<double> pd_count;
   hybrid::Events events;
-  hybrid::KindCounts counts;
-  double pd_steps = 0.0, mpm_steps = 0.0, seconds = 0.0;
+  std::int64_t pd_steps = 0, mpm_steps = 0;
+  hybrid::PhaseSeconds seconds;
+  std::vector<ParticleKind> kinds;
+  std::vector<Vec<2>> u;
 };
 
-CrackRun run_edge_crack(hybrid::Mode mode, hybrid::Coupling coupling) {
+CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed) {
   hybrid::Settings s;
   s.mode = mode;
-  s.coupling = coupling;
   s.radii = {.pd_radius = 2.0, .expand_trigger = 1.0, .expand_radius = 2.0, .keep_radius = 2.0};
-  auto env = [](const char* k, const char* d) { return std::string(std::getenv(k) ? std::getenv(k) : d); };
-  const std::string v = env("HYBRID_V", "2*min(t/1e-5, 1)"), sc = env("HYBRID_SC", "0.003");
-  const int steps = std::stoi(env("HYBRID_STEPS", "2500"));
-  const std::string pull = R"(
-[[boundary]]
-name = "bottom"
-kind = "velocity"
-region = { type = "box", min = [-1, -1], max = [1, 1.5e-3] }
-value = ["free", "-)" + v + R"("]
-[[boundary]]
-name = "top"
-kind = "velocity"
-region = { type = "box", min = [-1, 28.5e-3], max = [1, 1] }
-value = ["free", ")" + v + R"("]
-)";
-  test::HybridBody body(s, {.size = {0.06, 0.03},
-                            .tables = pull,
-                            .pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n",
-                            .pd_material_keys = "critical_stretch = " + sc,
-                            .hardening = "yield_stress = 1e12\ntangent_modulus = 0"});
+  const std::string v = std::to_string(speed) + "*min(t/1e-5, 1)";
+  const std::string pull =
+      "[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\n"
+      "region = { type = \"box\", min = [-1, -1], max = [1, 1.5e-3] }\n"
+      "value = [\"free\", \"-" +
+      v +
+      "\"]\n"
+      "[[boundary]]\nname = \"top\"\nkind = \"velocity\"\n"
+      "region = { type = \"box\", min = [-1, 28.5e-3], max = [1, 1] }\n"
+      "value = [\"free\", \"" +
+      v + "\"]\n";
+  test::HybridBody body(s,
+                        {.size = {0.06, 0.03},
+                         .tables = pull,
+                         .pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n",
+                         .pd_material_keys = "critical_stretch = 0.003",
+                         .hardening = "yield_stress = 1e12\ntangent_modulus = 0"});
   body.hybrid->start();
   CrackRun r;
-  const double dt = 2e-8;
+  const auto& p = body.particles();
   for (int n = 1; n <= steps; ++n) {
-    body.hybrid->step(dt);
-    if (std::getenv("HYBRID_DUMP") && n % 250 == 0) {
-      const auto phi = pd::local_damage(body.pd_setup.system);
-      auto& p = body.particles();
-      std::cout << "step " << n << " " << name(mode) << "\n";
-      std::vector<char> grid(60 * 30, ' ');
-      for (Index k = 0; k < p.n_real; ++k) {
-        const int i = p.site[k][0], j = p.site[k][1];
-        if (i < 0 || i >= 60 || j < 0 || j >= 30) continue;
-        grid[j * 60 + i] = p.kind[k] == ParticleKind::pd ? (phi[k] > 0.35 ? '#' : phi[k] > 0.05 ? '+' : 'o')
-                         : p.kind[k] == ParticleKind::transition ? 't' : '.';
-      }
-      for (int j = 29; j >= 0; --j) {
-        for (int i = 0; i < 60; ++i) {
-          const char c = grid[j * 60 + i];
-          std::cout << c;
-        }
-        std::cout << "\n";
-      }
-    }
-    if (n % 50 == 0) {
-      double x = 0.0;
-      for (const auto& tip : body.hybrid->track_tips()) x = std::max(x, tip.position[0]);
-      r.t.push_back(body.hybrid->time());
-      r.tip_x.push_back(x);
-    }
+    body.hybrid->step(kDt);
+    if (n % 50 != 0) continue;
+    Vec<2> front = Vec<2>::Zero();
+    for (const Index i : body.pd->movers())
+      if (pd::particle_damage(body.pd_setup.system, i) > 0.35 && p.x0[i][0] > front[0]) front = p.x0[i];
+    double gap = std::numeric_limits<double>::infinity();
+    for (const auto& c : body.hybrid->track_tips()) gap = std::min(gap, (c.position - front).norm());
+    r.t.push_back(body.hybrid->time());
+    r.front_x.push_back(front[0]);
+    r.tip_gap.push_back(gap);
+    r.pd_count.push_back(static_cast<double>(body.hybrid->counts().pd));
   }
-  r.damage = pd::local_damage(body.pd_setup.system);
   r.events = body.hybrid->events();
-  r.counts = body.hybrid->counts();
-  r.pd_steps = static_cast<double>(body.hybrid->pd_particle_steps());
-  r.mpm_steps = static_cast<double>(body.hybrid->mpm_particle_steps());
-  r.seconds = body.hybrid->phase_seconds().total();
+  r.pd_steps = body.hybrid->pd_particle_steps();
+  r.mpm_steps = body.hybrid->mpm_particle_steps();
+  r.seconds = body.hybrid->phase_seconds();
+  r.kinds = p.kind;
+  r.u = p.u;
   return r;
 }
 
-TEST(FastHybrid, EdgeCrackFollowsTheAllPdRun) {
-  const CrackRun pd = run_edge_crack(hybrid::Mode::pd, hybrid::Coupling::consistent);
-  for (auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::consistent})
+TEST(FastHybrid, ThreadCountDoesNotChangeARunWithMovingRegions) {
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const CrackRun one = run_edge_crack(hybrid::Mode::expand_shrink, 2000, 1.0);
+  omp_set_num_threads(2);
+  const CrackRun two = run_edge_crack(hybrid::Mode::expand_shrink, 2000, 1.0);
+  omp_set_num_threads(threads);
+  ASSERT_GT(one.events.to_pd, 0);
+  ASSERT_GT(one.events.to_mpm, 0) << "regions must shrink, or conversions back are not compared";
+  Index differ = 0;
+  for (std::size_t i = 0; i < one.u.size(); ++i) differ += one.u[i] != two.u[i] || one.kinds[i] != two.kinds[i];
+  test::record_gate(
+      Gate{.id = "hybrid.thread_invariance",
+           .claim = "a hybrid run with regions growing and shrinking (edge crack, 2000 steps) shall give "
+                    "bitwise the same displacements and particle kinds on 1 and 2 threads",
+           .measured = static_cast<double>(differ),
+           .expected = 0.0,
+           .compare = Compare::at_most,
+           .tolerance_reason = "exact: every PD and MPM sum has a fixed order; region management is serial",
+           .source = kSource,
+           .problem = kProblem});
+}
+
+TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
+  const int steps = 4000;
+  const CrackRun pd = run_edge_crack(hybrid::Mode::pd, steps, 0.3);
+  // The tracker against the damage front, in the all-PD run, once the crack runs. Not a
+  // gate yet: it misses the tip at some samples of a dynamic crack (docs/models/hybrid.md).
+  int samples = 0, within = 0;
+  double worst_found = 0.0;
+  nlohmann::json gap_rows = nlohmann::json::array();
+  for (std::size_t k = 0; k < pd.t.size(); ++k) {
+    if (pd.front_x[k] <= 0.017) continue;
+    ++samples;
+    within += pd.tip_gap[k] <= 2.0 * kDx;
+    if (std::isfinite(pd.tip_gap[k])) worst_found = std::max(worst_found, pd.tip_gap[k] / kDx);
+  }
+  test::record_data(
+      kProblem, "04_tip_tracking",
+      {{"kind", "table"},
+       {"title", "Crack-tip tracker on the running all-PD edge crack"},
+       {"columns",
+        {"samples (every 50 steps)", "with a tip within 2Δx of the front", "largest gap when a tip is found (Δx)"}},
+       {"rows", {{samples, within, worst_found}}},
+       {"caption",
+        "Front: the furthest particle with φ > 0.35. The issue asks for every sample within 2Δx; "
+        "samples without any tip count as misses."}});
+
+  nlohmann::json series = nlohmann::json::array(), rows = nlohmann::json::array();
+  auto us = [](std::vector<double> t) {
+    for (double& x : t) x *= 1e6;
+    return t;
+  };
+  auto mm = [](std::vector<double> x) {
+    for (double& v : x) v *= 1e3;
+    return x;
+  };
+  series.push_back({{"label", "all PD"}, {"x", us(pd.t)}, {"y", mm(pd.front_x)}, {"style", "line"}});
+  auto row = [&](const std::string& label, const CrackRun& r, double deviation) {
+    rows.push_back({label, deviation, r.events.to_pd, r.events.to_mpm, r.events.expansions, r.events.shrinks,
+                    static_cast<double>(r.pd_steps) / (r.pd_steps + r.mpm_steps), r.seconds.pd, r.seconds.mpm,
+                    r.seconds.coupling, r.seconds.regions});
+  };
+  row("pd", pd, 0.0);
   for (auto mode : {hybrid::Mode::expand, hybrid::Mode::expand_shrink}) {
-    const CrackRun h = run_edge_crack(mode, coupling);
-    std::cout << name(coupling) << " ";
-    double worst = 0.0;
-    for (std::size_t k = 0; k < pd.t.size(); ++k) worst = std::max(worst, std::abs(h.tip_x[k] - pd.tip_x[k]));
-    std::cout << name(mode) << ": tip deviation " << worst / kDx << " dx; to_pd " << h.events.to_pd << " to_mpm "
-              << h.events.to_mpm << " expansions " << h.events.expansions << " shrinks " << h.events.shrinks
-              << " pd " << h.counts.pd << " tr " << h.counts.transition << " mpm " << h.counts.mpm << " | pd steps "
-              << h.pd_steps << " mpm steps " << h.mpm_steps << " seconds " << h.seconds << " (all PD " << pd.seconds
-              << ")\n";
-    for (std::size_t k = 0; k < pd.t.size(); k += 5) std::cout << "  t " << pd.t[k] << " pd " << pd.tip_x[k] << " hybrid " << h.tip_x[k] << "\n";
+    const CrackRun h = run_edge_crack(mode, steps, 0.3);
+    double deviation = 0.0;
+    for (std::size_t k = 0; k < pd.t.size(); ++k)
+      deviation = std::max(deviation, std::abs(h.front_x[k] - pd.front_x[k]) / kDx);
+    series.push_back({{"label", std::string(name(mode))}, {"x", us(h.t)}, {"y", mm(h.front_x)}, {"style", "line"}});
+    row(std::string(name(mode)), h, deviation);
   }
+  test::record_data(kProblem, "02_edge_crack_front",
+                    {{"kind", "plot"},
+                     {"title", "Edge crack: crack front against time, three modes of one scene"},
+                     {"xlabel", "t (µs)"},
+                     {"ylabel", "furthest particle with φ > 0.35 (mm)"},
+                     {"xscale", "linear"},
+                     {"yscale", "linear"},
+                     {"series", series},
+                     {"caption",
+                      "60 × 30 mm plate, Δx = 1 mm, δ = 3.015Δx, edge pre-crack to x = 15 mm, edges pulled "
+                      "at 0.3 m/s (ramp 10 µs), critical stretch 0.003, no yield; regions R_pd = l_ext = "
+                      "l_con = 2δ, l_crit = δ (small for a small plate). Not gated yet: the paper's coupling "
+                      "leaves ghost forces at the interface (table 01), and the hybrid cracks run ahead of "
+                      "the all-PD crack once the front meets the region's edge."}});
+  test::record_data(kProblem, "03_edge_crack_runs",
+                    {{"kind", "table"},
+                     {"title", "Edge crack: the three modes"},
+                     {"columns",
+                      {"mode", "max front deviation (Δx)", "MPM→PD", "PD→MPM", "expansions", "shrinks",
+                       "PD share of particle-steps", "PD s", "MPM s", "coupling s", "regions s"}},
+                     {"rows", rows},
+                     {"caption", "One process, one thread count; wall times are this machine's, for their ratios."}});
 }
+
+// Accelerations of an affine displacement u = H x (no velocity) after one tiny step,
+// relative to σ/(ρΔx), the acceleration of a particle on a free face carrying the
+// affine state's traction; particles within 4Δx of the plate's edges are skipped (a
+// free edge is not in equilibrium under an affine field).
+struct GhostForces {
+  double pd = 0.0, transition = 0.0, mpm = 0.0;
+};
+
+GhostForces ghost_forces(const Mat<2>& H, bool with_pd) {
+  GhostForces g;
+  const Vec<2> size(0.04, 0.03), centre = 0.5 * size;
+  hybrid::Settings s;
+  s.mode = hybrid::Mode::expand;
+  test::HybridBody body(s, {.size = {size[0], size[1]}});
+  auto& p = body.particles();
+  std::vector<Index> disc;
+  for (Index i = 0; i < p.n_real; ++i) {
+    p.u[i] = H * p.x0[i];
+    body.mpm->set_deformation_gradient(i, Mat<2>::Identity() + H);
+    if (with_pd && (p.x0[i] - centre).norm() < 7e-3) disc.push_back(i);
+  }
+  body.hybrid->start(disc);
+  const double a_scale = body.mpm->state().stress[0].norm() / (kRho * kDx);
+  const double dt = 1e-13;
+  body.hybrid->step(dt);
+  for (Index i = 0; i < p.n_real; ++i) {
+    const Vec<2> x = p.x0[i];
+    if (x[0] < 4 * kDx || x[1] < 4 * kDx || x[0] > size[0] - 4 * kDx || x[1] > size[1] - 4 * kDx) continue;
+    const double a = p.v[i].norm() / dt / a_scale;
+    double& worst = p.kind[i] == ParticleKind::pd ? g.pd : p.kind[i] == ParticleKind::transition ? g.transition : g.mpm;
+    worst = std::max(worst, a);
+  }
+  return g;
+}
+
+TEST(FastHybrid, GhostForcesUnderAffineMotion) {
+  Mat<2> stretch, shear;
+  stretch << 1e-4, 0.0, 0.0, -0.3e-4;
+  shear << 0.0, 1e-4, 1e-4, 0.0;
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [label, H] : {std::pair{"stretch", stretch}, std::pair{"shear", shear}}) {
+    const GhostForces g = ghost_forces(H, true), mpm_only = ghost_forces(H, false);
+    rows.push_back({label, g.pd, g.transition, g.mpm, mpm_only.mpm});
+    EXPECT_LT(mpm_only.mpm, 1e-12) << "the all-MPM body is in equilibrium under an affine motion";
+  }
+  test::record_data(kProblem, "01_ghost_forces",
+                    {{"kind", "table"},
+                     {"title", "Ghost forces of the paper's coupling under affine motion"},
+                     {"columns", {"motion", "PD", "transition", "MPM", "all MPM"}},
+                     {"rows", rows},
+                     {"caption",
+                      "Largest acceleration of interior particles of each kind relative to σ/(ρΔx) (a free "
+                      "face's particle under the same stress), 40 × 30 mm plate, PD disc of radius 7 mm. The "
+                      "transition particles' PD state comes from half a family and the grid sees a hole "
+                      "where the PD region is: the residual is of the order of a free face's traction. Not "
+                      "gated: a consistent coupling is the next step (docs/models/hybrid.md)."}});
+}
+
 }  // namespace
-}  // namespace pdmpm
-namespace pdmpm {
-TEST(DebugHybrid, BondStretchNoise) {
-  for (auto mode : {hybrid::Mode::expand, hybrid::Mode::pd}) {
-    hybrid::Settings s;
-    s.mode = mode;
-    const std::string pull = R"X(
-[[boundary]]
-name = "bottom"
-kind = "velocity"
-region = { type = "box", min = [-1, -1], max = [1, 1.5e-3] }
-value = ["free", "-0.3*min(t/1e-5, 1)"]
-[[boundary]]
-name = "top"
-kind = "velocity"
-region = { type = "box", min = [-1, 28.5e-3], max = [1, 1] }
-value = ["free", "0.3*min(t/1e-5, 1)"]
-)X";
-    test::HybridBody body(s, {.size = {0.06, 0.03}, .tables = pull, .hardening = "yield_stress = 1e12\ntangent_modulus = 0"});
-    body.hybrid->start();
-    for (int n = 1; n <= 3000; ++n) body.hybrid->step(2e-8);
-    const auto& sys = body.pd_setup.system;
-    const auto& p = sys.particles;
-    std::vector<double> st;
-    for (Index i = 0; i < p.n_real; ++i) {
-      if (p.x0[i][1] < 5e-3 || p.x0[i][1] > 25e-3) continue;
-      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
-        const Index j = sys.families.neighbor[b];
-        const Vec<2> xi = p.x0[j] - p.x0[i];
-        const double s = std::getenv("RATE") ? (p.v[j] - p.v[i]).dot(xi) / xi.squaredNorm() : ((p.position(j) - p.position(i)).norm() - xi.norm()) / xi.norm();
-        st.push_back(s);
-      }
-    }
-    std::sort(st.begin(), st.end());
-    std::cout << name(mode) << " stretch: median " << st[st.size() / 2] << " 99% " << st[st.size() * 99 / 100] << " max "
-              << st.back() << "\n";
-  }
-}
-}  // namespace pdmpm
-namespace pdmpm {
-TEST(DebugHybrid, Stability) {
-  for (auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::consistent}) {
-    hybrid::Settings s;
-    s.mode = hybrid::Mode::expand;
-    s.coupling = coupling;
-    test::HybridBody body(s, {.size = {0.04, 0.03}, .hardening = "yield_stress = 1e12\ntangent_modulus = 0"});
-    auto& p = body.particles();
-    std::vector<Index> disc;
-    for (Index i = 0; i < p.n_real; ++i) {
-      p.v[i] = Vec<2>(std::sin(1e3 * p.x0[i][0] * p.x0[i][1] * 1e3), std::cos(7e5 * p.x0[i][0] * p.x0[i][0]));
-      if ((p.x0[i] - Vec<2>(0.02, 0.015)).norm() < 7e-3) disc.push_back(i);
-    }
-    body.hybrid->start(disc);
-    for (int n = 1; n <= 8000; ++n) {
-      body.hybrid->step(2e-8, n % 1000 == 0);
-      if (n % 1000 == 0) std::cout << name(coupling) << " step " << n << " KE " << body.hybrid->kinetic_energy() << " IE " << body.hybrid->internal_energy() << "\n";
-    }
-  }
-}
 }  // namespace pdmpm
