@@ -183,5 +183,35 @@ TEST(HybridRun, ModePdIsAllPeridynamics) {
   for (double m : o.method) EXPECT_EQ(m, 0.0);
 }
 
+// 3D goes through the same adaptor: a small block with a pre-crack runs in every mode.
+TEST(HybridRun, SmallBlockRunsIn3D) {
+  for (const char* mode : {"pd", "expand", "expand_shrink"}) {
+    test::SceneText t;
+    t.id = std::string("hybrid_block_") + mode;
+    t.dimension = 3;
+    t.min = {0.0, 0.0, 0.0};
+    t.max = {0.010, 0.008, 0.008};
+    t.model = "lps_plastic";
+    t.material_keys = "yield_stress = 4e8\ntangent_modulus = 2e9\ncritical_stretch = 0.01";
+    t.time = "steps = 20";
+    t.tables = std::string("[mpm]\n\n[hybrid]\nmode = \"") + mode +
+        "\"\npd_radius = 1\nexpand_trigger = 1\nexpand_radius = 1.5\nkeep_radius = 1.5\n"
+        "\n[[precrack]]\ncorner0 = [0.0, 0.004, 0.0]\ncorner1 = [0.003, 0.004, 0.0]\n"
+        "corner2 = [0.0, 0.004, 0.008]\n"
+        "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"1.0\", \"0\"]\n"
+        "region = { type = \"box\", min = [0.0, 0.007, 0.0], max = [0.010, 0.008, 0.008] }\n";
+    const test::ScratchDir scratch(std::string("hybrid_run_3d_") + mode);
+    RunOptions opt;
+    opt.out_dir = scratch.fresh("out");
+    opt.progress = false;
+    const auto r = run_scene(t.parse(), opt);
+    ASSERT_EQ(r.exit_code, 0) << mode << ": " << r.message;
+    EXPECT_EQ(r.summary["dimension"], 3);
+    EXPECT_EQ(r.summary["mode"], mode);
+    EXPECT_GT(r.summary["particle_steps"]["pd"].get<double>(), 0.0) << mode;
+    if (std::string(mode) != "pd") EXPECT_GT(r.summary["particle_steps"]["mpm"].get<double>(), 0.0) << mode;
+  }
+}
+
 }  // namespace
 }  // namespace pdmpm::sim
