@@ -100,9 +100,7 @@ void HybridRun<D>::start_outputs() {
   cols.insert(cols.end(), {"kinetic_energy", "internal_energy", "load_work_bound"});
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   cols.push_back("max_damage");
-  for (const auto& pr : s_.pd.probes)
-    for (const char* q : {"u", "v"})
-      for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
+  add_probe_columns<D>(s_.pd.probes, cols);
   rec_.start(cols, D, end_time_, "pd");
 }
 
@@ -158,10 +156,7 @@ void HybridRun<D>::history_row(std::int64_t step, double t) {
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
   const auto phi = pd::local_damage(s_.pd.system);
   row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
-  for (const auto& pr : s_.pd.probes) {
-    for (int a = 0; a < D; ++a) row.push_back(p_.u[pr.particle][a]);
-    for (int a = 0; a < D; ++a) row.push_back(p_.v[pr.particle][a]);
-  }
+  add_probe_values<D>(s_.pd.probes, p_.u, p_.v, row);
   rec_.write_history(row);
 }
 

@@ -66,9 +66,7 @@ void MpmRun<D>::start_outputs() {
   for (const auto& b : scene_.boundaries)
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
-  for (const auto& pr : s_.probes)
-    for (const char* q : {"u", "v"})
-      for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
+  add_probe_columns<D>(s_.probes, cols);
   rec_.start(cols, D, end_time_, "failed");
 }
 
@@ -94,10 +92,7 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
       if (s_.grid_bc_source[b] == static_cast<int>(k)) r += sim_.reactions()[b];
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   }
-  for (const auto& pr : s_.probes) {
-    for (int a = 0; a < D; ++a) row.push_back(p_.u[pr.particle][a]);
-    for (int a = 0; a < D; ++a) row.push_back(p_.v[pr.particle][a]);
-  }
+  add_probe_values<D>(s_.probes, p_.u, p_.v, row);
   rec_.write_history(row);
 }
 

@@ -125,9 +125,7 @@ void PdRun<D>::start_outputs() {
     for (int a = 0; a < D; ++a) cols.push_back(std::string("indenter_force_") + axis_name(a));
   for (const auto& c : s_.boundaries.constraints)
     for (int a = 0; a < D; ++a) cols.push_back("reaction_" + c.name + "_" + axis_name(a));
-  for (const auto& pr : s_.probes)
-    for (const char* q : {"u", "v"})
-      for (int a = 0; a < D; ++a) cols.push_back("probe_" + pr.name + "_" + q + axis_name(a));
+  add_probe_columns<D>(s_.probes, cols);
   if (scene_.time.integrator == io::Integrator::adr) cols.insert(cols.end(), {"adr_iterations", "adr_residual"});
   if (s_.crack) {
     crack_.emplace(s_.system, *s_.crack, s_.locations, s_.crack_exclude);
@@ -180,10 +178,7 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     for (Index i : c.particles) r -= p_.volume[i] * (p_.f[i] + p_.b[i]);
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   }
-  for (const auto& pr : s_.probes) {
-    for (int a = 0; a < D; ++a) row.push_back(p_.u[pr.particle][a]);
-    for (int a = 0; a < D; ++a) row.push_back(p_.v[pr.particle][a]);
-  }
+  add_probe_values<D>(s_.probes, p_.u, p_.v, row);
   if (scene_.time.integrator == io::Integrator::adr) {
     row.push_back(static_cast<double>(relax_.iterations));
     row.push_back(relax_.residual);

@@ -6,6 +6,7 @@
 
 #include "solver/core/types.hpp"
 #include "solver/io/scene.hpp"
+#include "solver/sim/run_metrics.hpp"
 
 namespace pdmpm::sim {
 
@@ -17,5 +18,23 @@ struct Probe {
 // Throws InputError(probe[k].point) if no real particle lies within √D Δx of a point.
 template <int D>
 std::vector<Probe> locate_probes(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real);
+
+// history.csv columns of the probes: probe_<name>_u<x…>, then _v<x…>, per probe.
+template <int D>
+void add_probe_columns(const std::vector<Probe>& probes, std::vector<std::string>& columns) {
+  for (const auto& pr : probes)
+    for (const char* q : {"u", "v"})
+      for (int a = 0; a < D; ++a) columns.push_back("probe_" + pr.name + "_" + q + axis_name(a));
+}
+
+// Their values, in the same order.
+template <int D>
+void add_probe_values(const std::vector<Probe>& probes, const std::vector<Vec<D>>& u, const std::vector<Vec<D>>& v,
+                      std::vector<double>& row) {
+  for (const auto& pr : probes) {
+    for (int a = 0; a < D; ++a) row.push_back(u[pr.particle][a]);
+    for (int a = 0; a < D; ++a) row.push_back(v[pr.particle][a]);
+  }
+}
 
 }  // namespace pdmpm::sim
