@@ -56,6 +56,7 @@ test::SceneText plate(const std::string& hybrid_keys, const std::string& time = 
       "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
       "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
       "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
+      "\n[[probe]]\nname = \"mid\"\npoint = [0.015, 0.01]\n"
       "\n[output]\nframes = 3\n";
   return t;
 }
@@ -154,9 +155,17 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
     EXPECT_GE(j["wall_time_phases"][phase].get<double>(), 0.0) << phase;
   EXPECT_TRUE(j["wall_time_phases"].contains("mpm_phases"));
 
-  for (const char* col : {"step", "time", "pd_particles", "transition_particles", "mpm_particles", "removed_particles",
-                          "to_pd", "to_mpm", "expansions", "shrinks", "onsets", "tips", "tip0_x", "tip3_y",
-                          "kinetic_energy", "internal_energy", "momentum_x", "momentum_y"})
+  for (const char* col : {"step",           "time",
+                          "pd_particles",   "transition_particles",
+                          "mpm_particles",  "removed_particles",
+                          "to_pd",          "to_mpm",
+                          "expansions",     "shrinks",
+                          "onsets",         "tips",
+                          "tip0_x",         "tip3_y",
+                          "kinetic_energy", "internal_energy",
+                          "momentum_x",     "momentum_y",
+                          "max_damage",     "probe_mid_uy",
+                          "probe_mid_vx"})
     EXPECT_TRUE(o.last.count(col)) << col;
   const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
                mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
@@ -209,7 +218,9 @@ TEST(HybridRun, SmallBlockRunsIn3D) {
     EXPECT_EQ(r.summary["dimension"], 3);
     EXPECT_EQ(r.summary["mode"], mode);
     EXPECT_GT(r.summary["particle_steps"]["pd"].get<double>(), 0.0) << mode;
-    if (std::string(mode) != "pd") EXPECT_GT(r.summary["particle_steps"]["mpm"].get<double>(), 0.0) << mode;
+    if (std::string(mode) != "pd") {
+      EXPECT_GT(r.summary["particle_steps"]["mpm"].get<double>(), 0.0) << mode;
+    }
   }
 }
 
