@@ -25,7 +25,7 @@ using test::Compare;
 using test::Gate;
 
 const char* kProblem = "hybrid";
-const char* kSource = "[noorian2024] §2 (coupling eq 10, regions eqs 11–12); docs/models/hybrid.md";
+const char* kSource = "[noorian] §2 (coupling eq 10, regions eqs 11–12); docs/models/hybrid.md";
 constexpr double kRho = 7850.0, kDx = 1e-3;
 constexpr double kDt = 2e-8;  // below both stable steps (PD ≈ 6e-8 s, grid ≈ 1.6e-7 s at Δx = 1 mm)
 
