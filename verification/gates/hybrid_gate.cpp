@@ -200,6 +200,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
 struct CrackRun {
   std::vector<double> t, front_x;  // furthest particle with φ > 0.35 (m)
   std::vector<double> tip_gap;     // distance from that particle to the nearest tracked tip (m)
+  std::vector<int> far_tips;       // tracked tips farther than 3Δx from it (the crack has one end)
   std::vector<double> pd_count;
   hybrid::Events events;
   std::int64_t pd_steps = 0, mpm_steps = 0;
@@ -239,7 +240,12 @@ CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed) {
     for (const Index i : body.pd->movers())
       if (pd::particle_damage(body.pd_setup.system, i) > 0.35 && p.x0[i][0] > front[0]) front = p.x0[i];
     double gap = std::numeric_limits<double>::infinity();
-    for (const auto& c : body.hybrid->track_tips()) gap = std::min(gap, (c.position - front).norm());
+    int far = 0;
+    for (const auto& c : body.hybrid->track_tips()) {
+      gap = std::min(gap, (c.position - front).norm());
+      far += (c.position - front).norm() > 3.0 * kDx;
+    }
+    r.far_tips.push_back(far);
     r.t.push_back(body.hybrid->time());
     r.front_x.push_back(front[0]);
     r.tip_gap.push_back(gap);
@@ -280,27 +286,38 @@ TEST(FastHybrid, ThreadCountDoesNotChangeARunWithMovingRegions) {
 TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
   const int steps = 4000;
   const CrackRun pd = run_edge_crack(hybrid::Mode::pd, steps, 0.3);
-  // The tracker against the damage front, in the all-PD run, once the crack runs. Not a
-  // gate yet: it misses the tip at some samples of a dynamic crack (docs/models/hybrid.md).
-  int samples = 0, within = 0;
-  double worst_found = 0.0;
-  nlohmann::json gap_rows = nlohmann::json::array();
+  // The tracker against the damage front, in the all-PD run, once the crack runs.
+  int samples = 0, with_false = 0;
+  double worst = 0.0;
   for (std::size_t k = 0; k < pd.t.size(); ++k) {
     if (pd.front_x[k] <= 0.017) continue;
     ++samples;
-    within += pd.tip_gap[k] <= 2.0 * kDx;
-    if (std::isfinite(pd.tip_gap[k])) worst_found = std::max(worst_found, pd.tip_gap[k] / kDx);
+    worst = std::max(worst, pd.tip_gap[k] / kDx);  // ∞ when no tip was found
+    with_false += pd.far_tips[k] > 0;
   }
-  test::record_data(
-      kProblem, "04_tip_tracking",
-      {{"kind", "table"},
-       {"title", "Crack-tip tracker on the running all-PD edge crack"},
-       {"columns",
-        {"samples (every 50 steps)", "with a tip within 2Δx of the front", "largest gap when a tip is found (Δx)"}},
-       {"rows", {{samples, within, worst_found}}},
-       {"caption",
-        "Front: the furthest particle with φ > 0.35. The issue asks for every sample within 2Δx; "
-        "samples without any tip count as misses."}});
+  ASSERT_GT(samples, 5) << "the crack must run";
+  test::record_gate(Gate{.id = "hybrid.tips.follow_pd_crack",
+                         .claim = "the crack-tip tracker shall find a tip within 2Δx of the damage front (furthest "
+                                  "particle with φ > 0.35) of a running PD edge crack at every sample (every 50 steps)",
+                         .measured = worst,
+                         .expected = 2.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the issue's bound: the front is known to ±Δx on the lattice, and the "
+                                             "tip lies up to 1Δx ahead of the last particle with φ > 0.35",
+                         .source = "[noorian] eqs 13–15",
+                         .unit = "Δx",
+                         .problem = kProblem});
+  test::record_data(kProblem, "04_tip_tracking",
+                    {{"kind", "table"},
+                     {"title", "Crack-tip tracker on the running all-PD edge crack"},
+                     {"columns",
+                      {"samples (every 50 steps)", "largest gap front–nearest tip (Δx)",
+                       "samples with a tip > 3Δx from the front (false tips)"}},
+                     {"rows", {{samples, worst, with_false}}},
+                     {"caption",
+                      "Front: the furthest particle with φ > 0.35. False tips are not gated yet: a running "
+                      "crack's damage band is several spacings wide and uneven, and a side lobe of it can "
+                      "pass the crack-end test."}});
 
   nlohmann::json series = nlohmann::json::array(), rows = nlohmann::json::array();
   auto us = [](std::vector<double> t) {
