@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <tuple>
 #include <utility>
 
@@ -83,18 +84,17 @@ std::vector<CrackTip<D>> find_crack_tips(const core::Lattice<D>& lattice, const 
   };
   const int reach = static_cast<int>(std::floor(s.end_radius));
   const double r2 = s.end_radius * s.end_radius;
-  std::vector<Candidate> candidates;
+  // Crack ends: sites below the ∇²φ threshold, near damage, whose damage is one-sided.
+  std::vector<std::uint8_t> is_end(sites.size(), 0);
+  std::vector<Vec<D>> ahead(sites.size(), Vec<D>::Zero());
   for (Index i = 0; i < n; ++i) {
     if (lap[i] >= s.laplacian_threshold) continue;
-    bool minimum = true;
     double damage = phi[i];
     for_each_offset<D>(1, [&](const IVec<D>& o) {
       const Index j = map.find(sites[i] + o);
-      if (j < 0) return;
-      minimum = minimum && lap[i] <= lap[j];
-      damage = std::max(damage, phi[j]);
+      if (j >= 0) damage = std::max(damage, phi[j]);
     });
-    if (!minimum || damage < s.damage_threshold) continue;
+    if (damage < s.damage_threshold) continue;
 
     // One-sidedness of the damage within the crack's line (plane), whose normal
     // is the axis of least spread of the damage around the site.
@@ -117,7 +117,45 @@ std::vector<CrackTip<D>> find_crack_tips(const core::Lattice<D>& lattice, const 
       moment += p * t;
       weight += p * t.norm();
     }
-    if (weight > 0.0 && moment.norm() >= s.end_asymmetry * weight) candidates.push_back({i, -moment.normalized()});
+    if (weight > 0.0 && moment.norm() >= s.end_asymmetry * weight) {
+      is_end[i] = 1;
+      ahead[i] = -moment.normalized();
+    }
+  }
+  // Candidates: crack-end sites that are minima of ∇²φ among all their neighbours.
+  // Behind a running crack the damage keeps growing, so the deepest ∇²φ can lie on
+  // the ridge behind the end and no end site is such a minimum: a connected group of
+  // end sites without a candidate contributes its deepest site instead.
+  std::vector<Candidate> candidates;
+  std::vector<std::uint8_t> in_group(sites.size(), 0);
+  for (Index i = 0; i < n; ++i) {
+    if (!is_end[i]) continue;
+    bool minimum = true;
+    for_each_offset<D>(1, [&](const IVec<D>& o) {
+      const Index j = map.find(sites[i] + o);
+      if (j >= 0) minimum = minimum && lap[i] <= lap[j];
+    });
+    if (minimum) candidates.push_back({i, ahead[i]});
+  }
+  std::vector<std::uint8_t> has_candidate(sites.size(), 0);
+  for (const auto& c : candidates) has_candidate[c.i] = 1;
+  for (Index seed = 0; seed < n; ++seed) {
+    if (!is_end[seed] || in_group[seed]) continue;
+    std::vector<Index> group{seed};
+    in_group[seed] = 1;
+    for (std::size_t k = 0; k < group.size(); ++k)
+      for_each_offset<D>(1, [&](const IVec<D>& o) {
+        const Index j = map.find(sites[group[k]] + o);
+        if (j >= 0 && is_end[j] && !in_group[j]) {
+          in_group[j] = 1;
+          group.push_back(j);
+        }
+      });
+    if (std::any_of(group.begin(), group.end(), [&](Index i) { return has_candidate[i] != 0; })) continue;
+    const Index deepest = *std::min_element(group.begin(), group.end(), [&](Index a, Index b) {
+      return lap[a] != lap[b] ? lap[a] < lap[b] : site_less<D>(sites[a], sites[b]);
+    });
+    candidates.push_back({deepest, ahead[deepest]});
   }
 
   std::sort(candidates.begin(), candidates.end(), [&](const Candidate& a, const Candidate& b) {
@@ -137,7 +175,7 @@ std::vector<CrackTip<D>> find_crack_tips(const core::Lattice<D>& lattice, const 
       const Index p = mirrored<D>(map, sites[i], IVec<D>::Unit(a)), m = mirrored<D>(map, sites[i], -IVec<D>::Unit(a));
       if (p < 0) continue;
       const double curvature = lap[p] - 2.0 * lap[i] + lap[m];
-      if (curvature > 0.0) x[a] -= 0.5 * (lap[p] - lap[m]) / curvature;
+      if (curvature > 0.0) x[a] -= std::clamp(0.5 * (lap[p] - lap[m]) / curvature, -0.5, 0.5);
     }
     tips.push_back({-1, sites[i], lattice.origin + lattice.spacing * x, lap[i] / (lattice.spacing * lattice.spacing)});
   }

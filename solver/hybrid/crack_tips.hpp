@@ -11,21 +11,24 @@
 //            out of the region then looks continued, not ended, and undamaged
 //            edges stay undamaged. Treating missing sites as undamaged (φ = 0)
 //            would put a false tip at the mouth of every edge crack.
-//  candidate the 3^D neighbourhood holds φ ≥ damage_threshold, ∇²φ Δx² <
-//            laplacian_threshold and ∇²φ(s) ≤ ∇²φ at every present 3^D − 1
+//  crack end the 3^D neighbourhood holds φ ≥ damage_threshold, ∇²φ Δx² <
+//            laplacian_threshold, and the damage around s within end_radius lies
+//            on one side of s along the crack. Moment m = Σ φ(s+o) P o over the
+//            window (missing sites mirrored as above, so a region edge does not
+//            look like the end of a crack), A = |m| / Σ φ(s+o) |P o|, where P
+//            projects onto the crack's line (plane in 3D), whose normal is the axis
+//            of least spread of that damage: the part across the crack only tells
+//            on which face s sits. A = 1 for damage on one ray, 0 for a line through
+//            s, so sites along the faces of a crack and branch points (three arms
+//            nearly balance) are dropped.
+//  candidate a crack-end site with ∇²φ(s) ≤ ∇²φ at every present 3^D − 1
 //            neighbour. Non-strict on purpose: on a lattice-aligned crack front
-//            equal values are exact, and merging removes the duplicates.
-//  crack end the damage around s within end_radius must lie on one side of s
-//            along the crack. Moment m = Σ φ(s+o) P o over the window (missing
-//            sites mirrored as above, so a region edge does not look like the end
-//            of a crack), A = |m| / Σ φ(s+o) |P o|, where P projects onto the
-//            crack's line (plane in 3D), whose normal is the axis of least spread
-//            of that damage: the part across the crack only tells on which face s
-//            sits. A = 1 for damage on one ray, 0 for a line through s, so sites
-//            along the faces of a crack and branch points (three arms nearly
-//            balance) are dropped.
+//            equal values are exact, and merging removes the duplicates. Behind a
+//            running crack the damage keeps growing, so the deepest ∇²φ can lie on
+//            the ridge behind the end and no end site is a minimum: a connected
+//            group of crack-end sites without a candidate gives its deepest site.
 //  position  the site, moved to the vertex of the parabola through ∇²φ along each
-//            axis, then tip_offset along −m (towards the intact side): the
+//            axis (at most ½Δx), then tip_offset along −m (towards the intact side): the
 //            minimum of ∇²φ sits behind the end of the cut.
 //  merging   candidates sorted by ∇²φ (deepest first, ties by site) are kept
 //            unless a kept one lies within merge_radius: one tip per crack end.

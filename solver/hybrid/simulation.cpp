@@ -254,6 +254,24 @@ const std::vector<CrackTip<D>>& Simulation<D>::track_tips() {
 }
 
 template <int D>
+Index Simulation<D>::region_violations() const {
+  const auto& p = pd_.particles();
+  Index bad = 0;
+  for (Index i = 0; i < p.n_real; ++i) {
+    const ParticleKind k = p.kind[i];
+    bad += (k == ParticleKind::removed) != (removed_[i] != 0);
+    if (k == ParticleKind::pd || k == ParticleKind::removed) continue;
+    bool near_pd = false;
+    for (const auto& off : map_.bonds().offset) {
+      const Index j = map_.find(p.site[i] + off);
+      near_pd = near_pd || (j >= 0 && j < p.n_real && p.kind[j] == ParticleKind::pd);
+    }
+    bad += near_pd != (k == ParticleKind::transition);
+  }
+  return bad;
+}
+
+template <int D>
 KindCounts Simulation<D>::counts() const {
   KindCounts c;
   const auto& p = pd_.particles();

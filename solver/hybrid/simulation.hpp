@@ -98,6 +98,11 @@ class Simulation {
   const std::vector<CrackTip<D>>& track_tips();
   std::int64_t pd_particle_steps() const { return pd_particle_steps_; }
   std::int64_t mpm_particle_steps() const { return mpm_particle_steps_; }
+  // Particles whose kind breaks the region rules: a non-PD particle within bond reach
+  // of a PD one that is not transition, a transition particle with no PD particle in
+  // reach, a kind `removed` without the removed mark or the other way round. Zero
+  // after every step (tests; costs a pass over the bonds of the body).
+  Index region_violations() const;
   // Per real particle: 1 once removed at ductile failure.
   const std::vector<std::uint8_t>& removed() const { return removed_; }
 

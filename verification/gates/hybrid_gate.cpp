@@ -25,7 +25,7 @@ using test::Compare;
 using test::Gate;
 
 const char* kProblem = "hybrid";
-const char* kSource = "[noorian2024] §2 (coupling eq 10, regions eqs 11–12); docs/models/hybrid.md";
+const char* kSource = "[noorian] §2 (coupling eq 10, regions eqs 11–12); docs/models/hybrid.md";
 constexpr double kRho = 7850.0, kDx = 1e-3;
 constexpr double kDt = 2e-8;  // below both stable steps (PD ≈ 6e-8 s, grid ≈ 1.6e-7 s at Δx = 1 mm)
 
@@ -200,12 +200,14 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
 struct CrackRun {
   std::vector<double> t, front_x;  // furthest particle with φ > 0.35 (m)
   std::vector<double> tip_gap;     // distance from that particle to the nearest tracked tip (m)
+  std::vector<int> far_tips;       // tracked tips farther than 3Δx from it (the crack has one end)
   std::vector<double> pd_count;
   hybrid::Events events;
   std::int64_t pd_steps = 0, mpm_steps = 0;
   hybrid::PhaseSeconds seconds;
   std::vector<ParticleKind> kinds;
   std::vector<Vec<2>> u;
+  Index region_violations = 0;  // summed over the steps
 };
 
 CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed) {
@@ -234,12 +236,18 @@ CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed) {
   const auto& p = body.particles();
   for (int n = 1; n <= steps; ++n) {
     body.hybrid->step(kDt);
+    r.region_violations += body.hybrid->region_violations();
     if (n % 50 != 0) continue;
     Vec<2> front = Vec<2>::Zero();
     for (const Index i : body.pd->movers())
       if (pd::particle_damage(body.pd_setup.system, i) > 0.35 && p.x0[i][0] > front[0]) front = p.x0[i];
     double gap = std::numeric_limits<double>::infinity();
-    for (const auto& c : body.hybrid->track_tips()) gap = std::min(gap, (c.position - front).norm());
+    int far = 0;
+    for (const auto& c : body.hybrid->track_tips()) {
+      gap = std::min(gap, (c.position - front).norm());
+      far += (c.position - front).norm() > 3.0 * kDx;
+    }
+    r.far_tips.push_back(far);
     r.t.push_back(body.hybrid->time());
     r.front_x.push_back(front[0]);
     r.tip_gap.push_back(gap);
@@ -280,27 +288,38 @@ TEST(FastHybrid, ThreadCountDoesNotChangeARunWithMovingRegions) {
 TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
   const int steps = 4000;
   const CrackRun pd = run_edge_crack(hybrid::Mode::pd, steps, 0.3);
-  // The tracker against the damage front, in the all-PD run, once the crack runs. Not a
-  // gate yet: it misses the tip at some samples of a dynamic crack (docs/models/hybrid.md).
-  int samples = 0, within = 0;
-  double worst_found = 0.0;
-  nlohmann::json gap_rows = nlohmann::json::array();
+  // The tracker against the damage front, in the all-PD run, once the crack runs.
+  int samples = 0, with_false = 0;
+  double worst = 0.0;
   for (std::size_t k = 0; k < pd.t.size(); ++k) {
     if (pd.front_x[k] <= 0.017) continue;
     ++samples;
-    within += pd.tip_gap[k] <= 2.0 * kDx;
-    if (std::isfinite(pd.tip_gap[k])) worst_found = std::max(worst_found, pd.tip_gap[k] / kDx);
+    worst = std::max(worst, pd.tip_gap[k] / kDx);  // ∞ when no tip was found
+    with_false += pd.far_tips[k] > 0;
   }
-  test::record_data(
-      kProblem, "04_tip_tracking",
-      {{"kind", "table"},
-       {"title", "Crack-tip tracker on the running all-PD edge crack"},
-       {"columns",
-        {"samples (every 50 steps)", "with a tip within 2Δx of the front", "largest gap when a tip is found (Δx)"}},
-       {"rows", {{samples, within, worst_found}}},
-       {"caption",
-        "Front: the furthest particle with φ > 0.35. The issue asks for every sample within 2Δx; "
-        "samples without any tip count as misses."}});
+  ASSERT_GT(samples, 5) << "the crack must run";
+  test::record_gate(Gate{.id = "hybrid.tips.follow_pd_crack",
+                         .claim = "the crack-tip tracker shall find a tip within 2Δx of the damage front (furthest "
+                                  "particle with φ > 0.35) of a running PD edge crack at every sample (every 50 steps)",
+                         .measured = worst,
+                         .expected = 2.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the issue's bound: the front is known to ±Δx on the lattice, and the "
+                                             "tip lies up to 1Δx ahead of the last particle with φ > 0.35",
+                         .source = "[noorian] eqs 13–15",
+                         .unit = "Δx",
+                         .problem = kProblem});
+  test::record_data(kProblem, "04_tip_tracking",
+                    {{"kind", "table"},
+                     {"title", "Crack-tip tracker on the running all-PD edge crack"},
+                     {"columns",
+                      {"samples (every 50 steps)", "largest gap front–nearest tip (Δx)",
+                       "samples with a tip > 3Δx from the front (false tips)"}},
+                     {"rows", {{samples, worst, with_false}}},
+                     {"caption",
+                      "Front: the furthest particle with φ > 0.35. False tips are not gated yet: a running "
+                      "crack's damage band is several spacings wide and uneven, and a side lobe of it can "
+                      "pass the crack-end test."}});
 
   nlohmann::json series = nlohmann::json::array(), rows = nlohmann::json::array();
   auto us = [](std::vector<double> t) {
@@ -313,19 +332,46 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
   };
   series.push_back({{"label", "all PD"}, {"x", us(pd.t)}, {"y", mm(pd.front_x)}, {"style", "line"}});
   auto row = [&](const std::string& label, const CrackRun& r, double deviation) {
+    const double ns_pd = r.pd_steps ? 1e9 * r.seconds.pd / r.pd_steps : 0.0;
+    const double ns_mpm = r.mpm_steps ? 1e9 * r.seconds.mpm / r.mpm_steps : 0.0;
     rows.push_back({label, deviation, r.events.to_pd, r.events.to_mpm, r.events.expansions, r.events.shrinks,
-                    static_cast<double>(r.pd_steps) / (r.pd_steps + r.mpm_steps), r.seconds.pd, r.seconds.mpm,
-                    r.seconds.coupling, r.seconds.regions});
+                    static_cast<double>(r.pd_steps) / (r.pd_steps + r.mpm_steps), ns_pd, ns_mpm,
+                    r.seconds.coupling / r.seconds.total(), r.seconds.regions / r.seconds.total()});
   };
   row("pd", pd, 0.0);
+  Index violations = 0;
+  double region_share = 0.0;
   for (auto mode : {hybrid::Mode::expand, hybrid::Mode::expand_shrink}) {
     const CrackRun h = run_edge_crack(mode, steps, 0.3);
+    violations += h.region_violations;
+    region_share = std::max(region_share, h.seconds.regions / h.seconds.total());
     double deviation = 0.0;
     for (std::size_t k = 0; k < pd.t.size(); ++k)
       deviation = std::max(deviation, std::abs(h.front_x[k] - pd.front_x[k]) / kDx);
     series.push_back({{"label", std::string(name(mode))}, {"x", us(h.t)}, {"y", mm(h.front_x)}, {"style", "line"}});
     row(std::string(name(mode)), h, deviation);
   }
+  test::record_gate(Gate{.id = "hybrid.regions.consistent",
+                         .claim = "after every step of the edge-crack runs in modes expand and expand_shrink (8000 "
+                                  "steps, regions growing and shrinking), every non-PD particle within bond reach of a "
+                                  "PD particle shall be transition and no other, and removed particles shall be "
+                                  "exactly the marked ones (particle-steps violating it)",
+                         .measured = static_cast<double>(violations),
+                         .expected = 0.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "exact: the classification is integer lattice arithmetic",
+                         .source = kSource,
+                         .problem = kProblem});
+  test::record_gate(Gate{.id = "hybrid.speed.region_share",
+                         .claim = "region management (onset, expansion, tips, shrink, conversions, bond refresh) shall "
+                                  "take at most 5 % of the wall time of a hybrid step (edge crack, modes expand and "
+                                  "expand_shrink, the larger share)",
+                         .measured = region_share,
+                         .expected = 0.05,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the issue's bound; a ratio of times in one process",
+                         .source = kSource,
+                         .problem = kProblem});
   test::record_data(kProblem, "02_edge_crack_front",
                     {{"kind", "plot"},
                      {"title", "Edge crack: crack front against time, three modes of one scene"},
@@ -345,9 +391,12 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
                      {"title", "Edge crack: the three modes"},
                      {"columns",
                       {"mode", "max front deviation (Δx)", "MPM→PD", "PD→MPM", "expansions", "shrinks",
-                       "PD share of particle-steps", "PD s", "MPM s", "coupling s", "regions s"}},
+                       "PD share of particle-steps", "ns per PD particle-step", "ns per MPM particle-step",
+                       "coupling share of wall time", "region share of wall time"}},
                      {"rows", rows},
-                     {"caption", "One process, one thread count; wall times are this machine's, for their ratios."}});
+                     {"caption",
+                      "One process, one thread count. The cost per particle-step of each method, measured "
+                      "in the same runs, decides how much the hybrid can save."}});
 }
 
 // Accelerations of an affine displacement u = H x (no velocity) after one tiny step,
