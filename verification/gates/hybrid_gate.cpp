@@ -69,13 +69,15 @@ TEST(FastHybrid, WithNoPdParticleItIsThePureMpmRunBitwise) {
                          .tolerance_reason = "exact: with no PD particle the PD side evaluates nothing and the grid "
                                              "step is MPM's own",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
 }
 
 TEST(FastHybrid, ModePdIsThePurePdRunBitwise) {
   // A pre-crack and a critical stretch, so bond breaking is part of the comparison.
-  const test::HybridPlate plate{.pd_tables = "[[precrack]]\nfrom = [0.0, 0.0075]\nto = [0.01, 0.0075]\n",
-                                .pd_material_keys = "critical_stretch = 0.002"};
+  test::HybridPlate plate;
+  plate.pd_tables = "[[precrack]]\nfrom = [0.0, 0.0075]\nto = [0.01, 0.0075]\n";
+  plate.pd_material_keys = "critical_stretch = 0.002";
   auto pd_alone = sim::build_pd<2>(plate.scene("pd"));
   kick_field(pd_alone.system.particles);
   auto alone = sim::make_simulation(pd_alone);
@@ -101,6 +103,7 @@ TEST(FastHybrid, ModePdIsThePurePdRunBitwise) {
                          .compare = Compare::at_most,
                          .tolerance_reason = "exact: the hybrid's step is velocity Verlet's sequence of operations",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
 }
 
@@ -110,7 +113,9 @@ TEST(FastHybrid, CouplingConservesMomentum) {
   hybrid::Settings settings;
   settings.mode = hybrid::Mode::expand;
   settings.radii = {.pd_radius = 1.5, .expand_trigger = 0.5, .expand_radius = 1.0, .keep_radius = 1.0};
-  test::HybridBody body(settings, {.pd_tables = "[[precrack]]\nfrom = [0.012, 0.0075]\nto = [0.018, 0.0075]\n"});
+  test::HybridPlate plate;
+  plate.pd_tables = "[[precrack]]\nfrom = [0.012, 0.0075]\nto = [0.018, 0.0075]\n";
+  test::HybridBody body(settings, plate);
   kick_field(body.particles());
   body.hybrid->start();
   const hybrid::KindCounts c = body.hybrid->counts();
@@ -136,6 +141,7 @@ TEST(FastHybrid, CouplingConservesMomentum) {
                          .tolerance_reason = "round-off of ~10⁴-term sums per step over 200 steps: 1e-12 leaves "
                                              "three decades above the measured 1e-15",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
 }
 
@@ -177,6 +183,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
                          .tolerance_reason = "the issue's bound; the PD force state is exact only to first order in "
                                              "the strain and its bond extensions are not MPM's log strain",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
   // The plastic strain may move by what the 1 % stress budget moves it on the hardening
   // line, 0.01 σ_eq/(3G + H): the PD evaluation in between flows a little further.
@@ -192,6 +199,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
                          .compare = Compare::at_most,
                          .tolerance_reason = "consistent with the stress gate's 1 %",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
 }
 
@@ -225,12 +233,13 @@ CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed) {
       "region = { type = \"box\", min = [-1, 28.5e-3], max = [1, 1] }\n"
       "value = [\"free\", \"" +
       v + "\"]\n";
-  test::HybridBody body(s,
-                        {.size = {0.06, 0.03},
-                         .tables = pull,
-                         .pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n",
-                         .pd_material_keys = "critical_stretch = 0.003",
-                         .hardening = "yield_stress = 1e12\ntangent_modulus = 0"});
+  test::HybridPlate plate;
+  plate.size = {0.06, 0.03};
+  plate.tables = pull;
+  plate.pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n";
+  plate.pd_material_keys = "critical_stretch = 0.003";
+  plate.hardening = "yield_stress = 1e12\ntangent_modulus = 0";
+  test::HybridBody body(s, plate);
   body.hybrid->start();
   CrackRun r;
   const auto& p = body.particles();
@@ -282,6 +291,7 @@ TEST(FastHybrid, ThreadCountDoesNotChangeARunWithMovingRegions) {
            .compare = Compare::at_most,
            .tolerance_reason = "exact: every PD and MPM sum has a fixed order; region management is serial",
            .source = kSource,
+           .unit = "",
            .problem = kProblem});
 }
 
@@ -332,11 +342,12 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
   };
   series.push_back({{"label", "all PD"}, {"x", us(pd.t)}, {"y", mm(pd.front_x)}, {"style", "line"}});
   auto row = [&](const std::string& label, const CrackRun& r, double deviation) {
-    const double ns_pd = r.pd_steps ? 1e9 * r.seconds.pd / r.pd_steps : 0.0;
-    const double ns_mpm = r.mpm_steps ? 1e9 * r.seconds.mpm / r.mpm_steps : 0.0;
+    const auto pd_steps = static_cast<double>(r.pd_steps), mpm_steps = static_cast<double>(r.mpm_steps);
+    const double ns_pd = pd_steps > 0 ? 1e9 * r.seconds.pd / pd_steps : 0.0;
+    const double ns_mpm = mpm_steps > 0 ? 1e9 * r.seconds.mpm / mpm_steps : 0.0;
     rows.push_back({label, deviation, r.events.to_pd, r.events.to_mpm, r.events.expansions, r.events.shrinks,
-                    static_cast<double>(r.pd_steps) / (r.pd_steps + r.mpm_steps), ns_pd, ns_mpm,
-                    r.seconds.coupling / r.seconds.total(), r.seconds.regions / r.seconds.total()});
+                    pd_steps / (pd_steps + mpm_steps), ns_pd, ns_mpm, r.seconds.coupling / r.seconds.total(),
+                    r.seconds.regions / r.seconds.total()});
   };
   row("pd", pd, 0.0);
   Index violations = 0;
@@ -361,6 +372,7 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
                          .compare = Compare::at_most,
                          .tolerance_reason = "exact: the classification is integer lattice arithmetic",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
   test::record_gate(Gate{.id = "hybrid.speed.region_share",
                          .claim = "region management (onset, expansion, tips, shrink, conversions, bond refresh) shall "
@@ -371,6 +383,7 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
                          .compare = Compare::at_most,
                          .tolerance_reason = "the issue's bound; a ratio of times in one process",
                          .source = kSource,
+                         .unit = "",
                          .problem = kProblem});
   test::record_data(kProblem, "02_edge_crack_front",
                     {{"kind", "plot"},
@@ -412,7 +425,9 @@ GhostForces ghost_forces(const Mat<2>& H, bool with_pd) {
   const Vec<2> size(0.04, 0.03), centre = 0.5 * size;
   hybrid::Settings s;
   s.mode = hybrid::Mode::expand;
-  test::HybridBody body(s, {.size = {size[0], size[1]}});
+  test::HybridPlate plate;
+  plate.size = {size[0], size[1]};
+  test::HybridBody body(s, plate);
   auto& p = body.particles();
   std::vector<Index> disc;
   for (Index i = 0; i < p.n_real; ++i) {

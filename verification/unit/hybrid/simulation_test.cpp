@@ -19,7 +19,9 @@ TEST(HybridSimulation, APreCrackStartsAsAPdRegionOfRadiusRpd) {
   Settings s;
   s.mode = Mode::expand;
   s.radii.pd_radius = 1.0;
-  test::HybridBody body(s, {.pd_tables = "[[precrack]]\nfrom = [0.010, 0.0075]\nto = [0.020, 0.0075]\n"});
+  test::HybridPlate plate;
+  plate.pd_tables = "[[precrack]]\nfrom = [0.010, 0.0075]\nto = [0.020, 0.0075]\n";
+  test::HybridBody body(s, plate);
   body.hybrid->start();
   const auto& p = body.particles();
   const double reach = 3.015e-3 * (1.0 + 1e-9);
@@ -29,8 +31,12 @@ TEST(HybridSimulation, APreCrackStartsAsAPdRegionOfRadiusRpd) {
     const Vec<2> x = p.x0[i];
     const double dx = std::max({0.010 - x[0], 0.0, x[0] - 0.020});
     const double d = std::hypot(dx, x[1] - 0.0075);
-    if (p.kind[i] == ParticleKind::pd) EXPECT_LT(d, 2.0 * reach) << i;
-    if (d < 0.5e-3) EXPECT_EQ(p.kind[i], ParticleKind::pd) << "a particle next to the cut must be PD: " << i;
+    if (p.kind[i] == ParticleKind::pd) {
+      EXPECT_LT(d, 2.0 * reach) << i;
+    }
+    if (d < 0.5e-3) {
+      EXPECT_EQ(p.kind[i], ParticleKind::pd) << "a particle next to the cut must be PD: " << i;
+    }
   }
   const KindCounts c = body.hybrid->counts();
   EXPECT_GT(c.pd, 0);
@@ -51,7 +57,10 @@ TEST(HybridSimulation, DuctileFailureInMpmRemovesTheParticleAndFormsAPdRegion) {
       "[[boundary]]\nname = \"right\"\nkind = \"velocity\"\nregion = { type = \"box\", min = [28.5e-3, -1], max = [1, "
       "1] }\n"
       "value = [\"10\", \"free\"]\n";
-  test::HybridBody body(s, {.tables = pull, .material_keys = "failure = { d0 = 0.0005, c = 0.0 }"});
+  test::HybridPlate plate;
+  plate.tables = pull;
+  plate.material_keys = "failure = { d0 = 0.0005, c = 0.0 }";
+  test::HybridBody body(s, plate);
   body.hybrid->start();
   const auto& p = body.particles();
   int steps = 0;
