@@ -22,8 +22,8 @@ struct Constraint {
   std::string name;
   ConstraintKind kind = ConstraintKind::fixed;
   std::vector<Index> particles;
-  std::array<bool, D> active{};            // which components are prescribed
-  std::array<Expression, D> value;          // displacement or velocity per component
+  std::array<bool, D> active{};                   // which components are prescribed
+  std::array<Expression, D> value;                // displacement or velocity per component
   std::shared_ptr<const AnalyticField<D>> field;  // analytic
 };
 

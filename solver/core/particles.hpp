@@ -18,13 +18,13 @@ enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, remove
 template <int D>
 struct Particles {
   Lattice<D> lattice;
-  std::vector<IVec<D>> site;    // integer lattice coordinates
-  std::vector<Vec<D>> x0;       // reference position
-  std::vector<Vec<D>> u;        // displacement
-  std::vector<Vec<D>> v;        // velocity
-  std::vector<Vec<D>> f;        // internal force density (N/m^3), real particles only
-  std::vector<Vec<D>> b;        // external force density (N/m^3), real particles only
-  std::vector<double> volume;   // V_i
+  std::vector<IVec<D>> site;   // integer lattice coordinates
+  std::vector<Vec<D>> x0;      // reference position
+  std::vector<Vec<D>> u;       // displacement
+  std::vector<Vec<D>> v;       // velocity
+  std::vector<Vec<D>> f;       // internal force density (N/m^3), real particles only
+  std::vector<Vec<D>> b;       // external force density (N/m^3), real particles only
+  std::vector<double> volume;  // V_i
   std::vector<ParticleKind> kind;
   Index n_real = 0;
 
