@@ -204,7 +204,7 @@ bool HybridRun<D>::stable(std::int64_t step, double t) {
       << scene_.time.energy_growth_limit << " × (initial energy + bound on the work of the loads) = " << allowed
       << " J; time step " << dt_ << " s (PD stable step " << dt_pd_ << " s, grid CFL step at t = 0 " << dt_cfl0_
       << " s)";
-  } else if (const double cfl = h_.mpm().stable_dt(); h_.counts().mpm + h_.counts().transition > 0 && dt_ > cfl) {
+  } else if (const double cfl = h_.mpm().stable_dt(); !h_.mpm().active().empty() && dt_ > cfl) {
     m << "unstable at step " << step << " (t = " << t << " s): particles moved so fast that the step " << dt_
       << " s exceeds the grid's CFL limit h / max(c + |v|) = " << cfl << " s; lower time.safety_factor or time.dt";
   } else {
@@ -287,7 +287,8 @@ RunResult HybridRun<D>::run() {
     }
     if (rec_.history_due(step)) history_row(step, t);
     if (rec_.frame_due(step)) frame(step, t);
-    rec_.progress(step, t, h_.counts().pd);
+    // The PD count from the mover list: counts() scans every particle, too much for each step.
+    rec_.progress(step, t, static_cast<Index>(h_.pd().movers().size()));
   }
   return rec_.finish(steps_done_, h_.time(), h_.counts().pd, p_.n_real, summary());
 }
