@@ -218,13 +218,13 @@ TEST(FastDogbone, HybridAgreesWithMpmBeforeFailure) {
   // Report: the curves and the energy ratio.
   curve_plot("01_engineering_curve", "Engineering stress–strain curve (fast tier, to 5.2 ms)", m, y, h);
   auto energy_ratio = [](const Curve& c) {
-    std::vector<double> x, r;
+    std::vector<double> x, ratio;
     for (std::size_t k = 0; k < c.t.size(); ++k)
       if (c.internal[k] > 0) {
         x.push_back(c.t[k] * 1e3);
-        r.push_back(std::max(c.kinetic[k] / c.internal[k], 1e-8));
+        ratio.push_back(std::max(c.kinetic[k] / c.internal[k], 1e-8));
       }
-    return std::make_pair(x, r);
+    return std::make_pair(x, ratio);
   };
   const auto [xm, rm] = energy_ratio(m);
   const auto [xy, ry] = energy_ratio(y);
