@@ -165,7 +165,8 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
                           "kinetic_energy", "internal_energy",
                           "momentum_x",     "momentum_y",
                           "max_damage",     "probe_mid_uy",
-                          "probe_mid_vx"})
+                          "probe_mid_vx",   "reaction_top_x",
+                          "reaction_top_y", "reaction_bottom_y"})
     EXPECT_TRUE(o.last.count(col)) << col;
   const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
                mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
@@ -190,6 +191,10 @@ TEST(HybridRun, ModePdIsAllPeridynamics) {
   EXPECT_EQ(std::stod(o.last.at("pd_particles")), static_cast<double>(o.particles));
   EXPECT_EQ(std::stod(o.last.at("mpm_particles")), 0.0);
   for (double m : o.method) EXPECT_EQ(m, 0.0);
+  // All PD: the reactions come from the held PD particles alone (−Σ V (f + b)); the grips
+  // pull the plate apart, so the top support pulls up and the bottom one down.
+  EXPECT_GT(std::stod(o.last.at("reaction_top_y")), 0.0);
+  EXPECT_LT(std::stod(o.last.at("reaction_bottom_y")), 0.0);
 }
 
 // 3D goes through the same adaptor: a small block with a pre-crack runs in every mode.
