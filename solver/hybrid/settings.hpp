@@ -25,6 +25,9 @@ struct Settings {
   // Particles with a bond cut before the run (a pre-crack) start PD with a region of
   // R_pd around them: an MPM grid cannot carry a cut (project decision, the paper is silent).
   bool precrack_starts_pd = true;
+  // Measure the energy each conversion adds (conversion_energy()): one extra PD
+  // evaluation in every step that converts particles. Diagnostics and tests.
+  bool audit_conversions = false;
 
   // Throws InputError naming the key (hybrid.…) in `file`.
   void validate(const std::string& file = "") const;

@@ -100,9 +100,16 @@ void Simulation<D>::step(double dt, bool energy) {
   bcs.apply_displacement(p, t1, dt);
   p.update_ghosts();
 
+  const std::int64_t converted = events_.to_pd + events_.to_mpm;
   manage_regions();
   lap(seconds_.regions);
-  evaluate_forces(t1, energy);
+  const bool audit = settings_.audit_conversions && events_.to_pd + events_.to_mpm != converted;
+  evaluate_forces(t1, energy || audit);
+  if (audit) {
+    const double after = internal_energy(), jump = after - energy_before_conversion_;
+    conversion_energy_ += jump;
+    if (after > 0.0) largest_conversion_jump_ = std::max(largest_conversion_jump_, std::abs(jump) / after);
+  }
   clock = omp_get_wtime();
   pd_.kick(0.5 * dt);
   bcs.apply_velocity(p, t1);
@@ -171,6 +178,8 @@ void Simulation<D>::manage_regions() {
   const bool may_shrink = settings_.mode == Mode::expand_shrink;
   if (failed.empty() && last_breaks_.empty()) return;
   const std::vector<ParticleKind> before = kind;
+  if (settings_.audit_conversions)
+    energy_before_conversion_ = (pd_.movers().empty() ? 0.0 : pd_.probe_internal_energy()) + mpm_.energies().strain;
 
   if (!failed.empty()) {
     onset<D>(map_, failed, kind, removed_);

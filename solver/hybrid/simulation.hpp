@@ -111,6 +111,12 @@ class Simulation {
   Vec<D> momentum() const;
   double kinetic_energy() const;   // PD movers + MPM particles
   double internal_energy() const;  // PD strain energy of the movers (last evaluation with energy) + MPM stored energy
+  // Energy added by conversions since the start (J; with settings.audit_conversions,
+  // else 0): at each converting step the strain energy of the body at tⁿ⁺¹ after the
+  // conversions minus before them (kinetic energy does not change: v is carried).
+  double conversion_energy() const { return conversion_energy_; }
+  // The largest jump of one step's conversions relative to the body's internal energy then.
+  double largest_conversion_jump() const { return largest_conversion_jump_; }
 
  private:
   void manage_regions();
@@ -133,6 +139,8 @@ class Simulation {
   std::int64_t base_steps_ = 0, steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;
   Events events_;
   PhaseSeconds seconds_;
+  double energy_before_conversion_ = 0.0;  // audit: strain energy before this step's conversions
+  double conversion_energy_ = 0.0, largest_conversion_jump_ = 0.0;
 };
 
 }  // namespace pdmpm::hybrid

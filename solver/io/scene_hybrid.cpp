@@ -54,6 +54,7 @@ void read_hybrid(const TomlReader& t, Scene& s) {
     h.shrink_every = static_cast<int>(*v);
   }
   h.precrack_starts_pd = t.boolean("precrack_starts_pd", true);
+  h.audit_conversions = t.boolean("audit_conversions", false);
   if (auto tips = t.optional_table("tips")) {
     auto tip = [&tips](const char* key, double& field) {
       if (auto v = tips->optional_number(key)) field = *v;

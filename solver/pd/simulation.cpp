@@ -39,6 +39,15 @@ void Simulation<D>::external_forces(double t) {
 }
 
 template <int D>
+double Simulation<D>::probe_internal_energy() {
+  const std::int64_t sides = broken_sides_;
+  internal_forces(true);
+  reject();
+  broken_sides_ = sides;
+  return internal_energy();
+}
+
+template <int D>
 void Simulation<D>::internal_forces(bool energy) {
   ForceRequest req;
   req.break_bonds = forcing_.breaking.enabled;

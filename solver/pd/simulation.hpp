@@ -83,6 +83,10 @@ class Simulation {
     model_.reject();
   }
 
+  // Strain energy of the current displacements, committing nothing: an evaluation
+  // whose breaks and plastic flow are dropped (the next evaluation makes them again).
+  double probe_internal_energy();
+
   double kinetic_energy() const;
   double internal_energy() const;  // from the last internal_forces(true)
   Vec<D> momentum() const;

@@ -99,6 +99,7 @@ void HybridRun<D>::start_outputs() {
   for (int k = 0; k < kHybridTipColumns; ++k)
     for (int a = 0; a < D; ++a) cols.push_back("tip" + std::to_string(k) + "_" + axis_name(a));
   cols.insert(cols.end(), {"kinetic_energy", "internal_energy", "load_work_bound"});
+  if (h_.settings().audit_conversions) cols.push_back("conversion_energy");
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   cols.push_back("max_damage");
   for (const auto& b : scene_.boundaries)
@@ -156,6 +157,7 @@ void HybridRun<D>::history_row(std::int64_t step, double t) {
                                                        : std::numeric_limits<double>::quiet_NaN());
   const auto g = h_.mpm().energies();
   row.insert(row.end(), {kinetic_, internal_, pd_work_ + std::abs(g.external_work) + std::abs(g.boundary_work)});
+  if (h_.settings().audit_conversions) row.push_back(h_.conversion_energy());
   const Vec<D> mom = h_.momentum();
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
   const auto phi = pd::local_damage(s_.pd.system);

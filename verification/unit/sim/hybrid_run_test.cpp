@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -70,11 +71,13 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_EQ(s.hybrid->radii.expand_trigger, 3.0);
   EXPECT_EQ(s.hybrid->shrink_every, 1);
   EXPECT_TRUE(s.hybrid->precrack_starts_pd);
+  EXPECT_FALSE(s.hybrid->audit_conversions);
   EXPECT_EQ(s.mpm->constitutive, mpm::MaterialModel::j2);
 
   const auto k = plate(
                      "mode = \"expand\"\npd_radius = 5\nexpand_trigger = 2\nexpand_radius = 6\nkeep_radius = 4\n"
-                     "shrink_every = 3\nprecrack_starts_pd = false\n[hybrid.tips]\ndamage_threshold = 0.3\n"
+                     "shrink_every = 3\nprecrack_starts_pd = false\naudit_conversions = "
+                     "true\n[hybrid.tips]\ndamage_threshold = 0.3\n"
                      "match_radius = 2.5\n")
                      .parse();
   EXPECT_EQ(k.hybrid->mode, hybrid::Mode::expand);
@@ -84,6 +87,7 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_EQ(k.hybrid->radii.keep_radius, 4.0);
   EXPECT_EQ(k.hybrid->shrink_every, 3);
   EXPECT_FALSE(k.hybrid->precrack_starts_pd);
+  EXPECT_TRUE(k.hybrid->audit_conversions);
   EXPECT_EQ(k.hybrid->tips.damage_threshold, 0.3);
   EXPECT_EQ(k.hybrid->tips.match_radius, 2.5);
   EXPECT_EQ(k.output.fields, (std::vector<std::string>{"method", "displacement", "velocity", "damage", "von_mises"}));
@@ -140,9 +144,10 @@ Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
 
 TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
   // Radii of 1.5–2 δ keep the pre-crack's region inside the plate (7 δ = 21 mm would cover it).
-  const auto o =
-      run_plate("mode = \"expand_shrink\"\npd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n",
-                "expand_shrink");
+  const auto o = run_plate(
+      "mode = \"expand_shrink\"\npd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n"
+      "audit_conversions = true\n",
+      "expand_shrink");
   ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
   const auto& j = o.result.summary;
   EXPECT_EQ(j["solver"], "hybrid");
@@ -155,19 +160,33 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
     EXPECT_GE(j["wall_time_phases"][phase].get<double>(), 0.0) << phase;
   EXPECT_TRUE(j["wall_time_phases"].contains("mpm_phases"));
 
-  for (const char* col : {"step",           "time",
-                          "pd_particles",   "transition_particles",
-                          "mpm_particles",  "removed_particles",
-                          "to_pd",          "to_mpm",
-                          "expansions",     "shrinks",
-                          "onsets",         "tips",
-                          "tip0_x",         "tip3_y",
-                          "kinetic_energy", "internal_energy",
-                          "momentum_x",     "momentum_y",
-                          "max_damage",     "probe_mid_uy",
-                          "probe_mid_vx",   "reaction_top_x",
-                          "reaction_top_y", "reaction_bottom_y"})
+  for (const char* col : {"step",
+                          "time",
+                          "pd_particles",
+                          "transition_particles",
+                          "mpm_particles",
+                          "removed_particles",
+                          "to_pd",
+                          "to_mpm",
+                          "expansions",
+                          "shrinks",
+                          "onsets",
+                          "tips",
+                          "tip0_x",
+                          "tip3_y",
+                          "kinetic_energy",
+                          "internal_energy",
+                          "momentum_x",
+                          "momentum_y",
+                          "max_damage",
+                          "probe_mid_uy",
+                          "probe_mid_vx",
+                          "conversion_energy",
+                          "reaction_top_x",
+                          "reaction_top_y",
+                          "reaction_bottom_y"})
     EXPECT_TRUE(o.last.count(col)) << col;
+  EXPECT_TRUE(std::isfinite(std::stod(o.last.at("conversion_energy"))));
   const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
                mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
   EXPECT_EQ(pd + tr + mp + rm, static_cast<double>(o.particles));
