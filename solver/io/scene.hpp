@@ -149,6 +149,7 @@ struct MpmSpec {
   double flip = 1.0;
   double cell_size = 0.0, cell_factor = 2.0;
   int padding_cells = 3;
+  std::vector<double> domain_min, domain_max;  // the grid's node box; empty: particle bounds ± padding_cells
   double damping_viscous = 0.0, damping_local = 0.0;
   mpm::Nonlocal nonlocal;
   mpm::MaterialModel constitutive = mpm::MaterialModel::linear_elastic;

@@ -37,6 +37,15 @@ void read_mpm_options(const TomlReader& t, Scene& s) {
     if (*v < 2 || *v > 100) t.fail("padding_cells", "must be in [2, 100]");
     spec.padding_cells = static_cast<int>(*v);
   }
+  // An explicit node box, for bodies that move far in one direction (padding grows all sides).
+  if (auto v = t.optional_numbers("domain_min", static_cast<std::size_t>(s.dimension))) spec.domain_min = *v;
+  if (auto v = t.optional_numbers("domain_max", static_cast<std::size_t>(s.dimension))) spec.domain_max = *v;
+  if (spec.domain_min.empty() != spec.domain_max.empty())
+    t.fail(spec.domain_min.empty() ? "domain_min" : "domain_max", "give both domain_min and domain_max, or neither");
+  for (std::size_t a = 0; a < spec.domain_min.size(); ++a)
+    if (!(spec.domain_min[a] < spec.domain_max[a])) t.fail("domain_max", "must exceed domain_min in every component");
+  if (t.has("domain_min") && t.has("padding_cells"))
+    t.fail("padding_cells", "give at most one of padding_cells and domain_min/domain_max");
   if (auto v = t.optional_number("damping_viscous"))
     spec.damping_viscous = t.in_range("damping_viscous", *v, 0.0, 1e12, false, false);
   if (auto v = t.optional_number("damping_local"))

@@ -33,6 +33,7 @@ class HybridRun {
   void frame(std::int64_t step, double t);
   bool stable(std::int64_t step, double t);
   const std::vector<hybrid::CrackTip<D>>& tips();
+  std::vector<Vec<D>> reactions() const;
   nlohmann::json summary() const;
 
   const io::Scene& scene_;
@@ -101,6 +102,9 @@ void HybridRun<D>::start_outputs() {
   if (h_.settings().audit_conversions) cols.push_back("conversion_energy");
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   cols.push_back("max_damage");
+  for (const auto& b : scene_.boundaries)
+    if (b.kind != io::BoundaryKind::traction)
+      for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.pd.probes, cols);
   rec_.start(cols, D, end_time_, "pd");
 }
@@ -158,8 +162,31 @@ void HybridRun<D>::history_row(std::int64_t step, double t) {
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
   const auto phi = pd::local_damage(s_.pd.system);
   row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
+  for (const Vec<D>& r : reactions())
+    for (int a = 0; a < D; ++a) row.push_back(r[a]);
   add_probe_values<D>(s_.pd.probes, p_.u, p_.v, row);
   rec_.write_history(row);
+}
+
+// Force the supports exert on the body, per scene boundary (as the MPM and PD runs
+// report it): the grid's reaction on its held nodes plus, quasi-static, −Σ V (f + b)
+// over the held particles that are PD.
+template <int D>
+std::vector<Vec<D>> HybridRun<D>::reactions() const {
+  std::vector<Vec<D>> out;
+  for (std::size_t k = 0; k < scene_.boundaries.size(); ++k) {
+    const auto& b = scene_.boundaries[k];
+    if (b.kind == io::BoundaryKind::traction) continue;
+    Vec<D> r = Vec<D>::Zero();
+    for (std::size_t g = 0; g < s_.grid_bc_source.size(); ++g)
+      if (s_.grid_bc_source[g] == static_cast<int>(k)) r += h_.mpm().reactions()[g];
+    for (const auto& c : h_.pd().boundaries().constraints)
+      if (c.name == b.name)
+        for (Index i : c.particles)
+          if (p_.kind[i] == core::ParticleKind::pd) r -= p_.volume[i] * (p_.f[i] + p_.b[i]);
+    out.push_back(r);
+  }
+  return out;
 }
 
 template <int D>

@@ -96,6 +96,15 @@ MpmGridSettings<D> translate_mpm(const io::Scene& s) {
   st.cell_size = m.cell_size;
   st.cell_factor = m.cell_factor;
   st.padding_cells = m.padding_cells;
+  if (!m.domain_min.empty()) {
+    Vec<D> lo, hi;
+    for (int a = 0; a < D; ++a) {
+      lo[a] = m.domain_min[static_cast<std::size_t>(a)];
+      hi[a] = m.domain_max[static_cast<std::size_t>(a)];
+    }
+    st.domain_min = lo;
+    st.domain_max = hi;
+  }
   st.damping_viscous = m.damping_viscous;
   st.damping_local = m.damping_local;
   st.nonlocal = m.nonlocal;

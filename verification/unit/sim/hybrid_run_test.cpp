@@ -160,17 +160,31 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
     EXPECT_GE(j["wall_time_phases"][phase].get<double>(), 0.0) << phase;
   EXPECT_TRUE(j["wall_time_phases"].contains("mpm_phases"));
 
-  for (const char* col : {"step",           "time",
-                          "pd_particles",   "transition_particles",
-                          "mpm_particles",  "removed_particles",
-                          "to_pd",          "to_mpm",
-                          "expansions",     "shrinks",
-                          "onsets",         "tips",
-                          "tip0_x",         "tip3_y",
-                          "kinetic_energy", "internal_energy",
-                          "momentum_x",     "momentum_y",
-                          "max_damage",     "probe_mid_uy",
-                          "probe_mid_vx",   "conversion_energy"})
+  for (const char* col : {"step",
+                          "time",
+                          "pd_particles",
+                          "transition_particles",
+                          "mpm_particles",
+                          "removed_particles",
+                          "to_pd",
+                          "to_mpm",
+                          "expansions",
+                          "shrinks",
+                          "onsets",
+                          "tips",
+                          "tip0_x",
+                          "tip3_y",
+                          "kinetic_energy",
+                          "internal_energy",
+                          "momentum_x",
+                          "momentum_y",
+                          "max_damage",
+                          "probe_mid_uy",
+                          "probe_mid_vx",
+                          "conversion_energy",
+                          "reaction_top_x",
+                          "reaction_top_y",
+                          "reaction_bottom_y"})
     EXPECT_TRUE(o.last.count(col)) << col;
   EXPECT_TRUE(std::isfinite(std::stod(o.last.at("conversion_energy"))));
   const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
@@ -196,6 +210,10 @@ TEST(HybridRun, ModePdIsAllPeridynamics) {
   EXPECT_EQ(std::stod(o.last.at("pd_particles")), static_cast<double>(o.particles));
   EXPECT_EQ(std::stod(o.last.at("mpm_particles")), 0.0);
   for (double m : o.method) EXPECT_EQ(m, 0.0);
+  // All PD: the reactions come from the held PD particles alone (−Σ V (f + b)); the grips
+  // pull the plate apart, so the top support pulls up and the bottom one down.
+  EXPECT_GT(std::stod(o.last.at("reaction_top_y")), 0.0);
+  EXPECT_LT(std::stod(o.last.at("reaction_bottom_y")), 0.0);
 }
 
 // 3D goes through the same adaptor: a small block with a pre-crack runs in every mode.

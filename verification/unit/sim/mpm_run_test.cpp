@@ -237,5 +237,25 @@ TEST(MpmRun, GripsAtFullSpeedFromTheStartAreNotAnInstability) {
   EXPECT_LT(std::abs(row.at("energy_error")), 0.0125 * row.at("boundary_work"));
 }
 
+// [mpm] domain_min/domain_max give the grid's node box (a body pulled far one way
+// needs room on one side only); both or neither, min below max, not with padding_cells.
+io::Scene grid_box_scene(const std::string& keys) {
+  return test::SceneText{
+      .id = "grid_box", .horizon_ratio = 0.0, .model = "mpm", .model_keys = "", .tables = "[mpm]\n" + keys}
+      .parse("grid_box.toml");
+}
+
+TEST(MpmRun, GridNodeBoxFromTheScene) {
+  const auto s = grid_box_scene("domain_min = [-0.01, -0.002]\ndomain_max = [0.1, 0.02]\n");
+  const auto g = translate_mpm<2>(s);
+  ASSERT_TRUE(g.settings.domain_min && g.settings.domain_max);
+  EXPECT_EQ(*g.settings.domain_min, Vec<2>(-0.01, -0.002));
+  EXPECT_EQ(*g.settings.domain_max, Vec<2>(0.1, 0.02));
+  EXPECT_FALSE(translate_mpm<2>(grid_box_scene("")).settings.domain_min);
+  for (const std::string bad : {"domain_min = [0.0, 0.0]\n", "domain_min = [0.0, 0.0]\ndomain_max = [0.1, 0.0]\n",
+                                "domain_min = [0.0, 0.0]\ndomain_max = [0.1, 0.1]\npadding_cells = 4\n"})
+    EXPECT_THROW(grid_box_scene(bad), InputError) << bad;
+}
+
 }  // namespace
 }  // namespace pdmpm::sim
