@@ -52,10 +52,6 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
     }
   plastic_ext_.assign(f.n_bonds(), 0.0);
   trial_eps_.assign(f.n_bonds(), 0.0);
-  bond_length_.assign(f.n_bonds(), 0.0);
-  flowed_.assign(n, 0);
-  family_range_.resize(n);
-  for (Index i = 0; i < n; ++i) family_range_[i] = {f.begin(i), f.end(i)};
   scale_.assign(n, 1.0);
   mean_term_.assign(n, 0.0);
   volumetric_energy_.assign(n, 0.0);
@@ -123,9 +119,7 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   // Σ ωβcV|ξ| ε = 0 and the force is the gradient of W (with c ≡ 1 it is LPS's θ).
   double moment = 0.0;
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
-    const auto g = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
-    const double e = g.e;
-    bond_length_[b] = g.l;
+    const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
     trial_eps_[b] = e;
     moment += t.weight[k] * shell_[k] * p.volume[j] * t.length[k] * e;
   });
@@ -161,13 +155,9 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
   // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs.
-  if (flowed_[i]) {
-    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
-      plastic_ext_.trial[b] = plastic_ext_.committed[b];
-    flowed_[i] = 0;
-  }
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    plastic_ext_.trial[b] = plastic_ext_.committed[b];
   if (r == 1.0) return;
-  flowed_[i] = 1;
   sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
     plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
   });
@@ -258,13 +248,13 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
     Vec<D> f = Vec<D>::Zero();
     double dev = 0.0;
     sys.for_each_live_bond(i, [&](BondIndex b, Index j, int s) {
-      const Vec<D> y = t.xi[s] + (p.u[j] - p.u[i]);  // |y|: the return map's, same bits
+      const auto g = deform<D>(t.xi[s], t.length[s], p.u[j] - p.u[i]);
       const double L = t.length[s];
       // The elastic deviatoric part after the return is r ε_trial (both sides live together).
       const double eps_i = scale_[i] * trial_eps_[b], eps_j = scale_[j] * trial_eps_[reverse_[b]];
       const double tij = mean_term_[i] * L * inv_m_[i] + shell_[s] * B * eps_i * inv_md_[i];
       const double tji = mean_term_[j] * L * inv_m_[j] + shell_[s] * B * eps_j * inv_md_[j];
-      f += t.weight[s] * p.volume[j] * (tij + tji) / bond_length_[b] * y;
+      f += t.weight[s] * p.volume[j] * (tij + tji) / g.l * g.y;
       if (req.energy) dev += t.weight[s] * shell_[s] * p.volume[j] * eps_i * eps_i;
     });
     p.f[i] = f;
@@ -329,21 +319,8 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
 }
 
 template <int D>
-void LpsPlastic<D>::copy_plastic_extensions(bool to_committed) {
-  auto& from = to_committed ? plastic_ext_.trial : plastic_ext_.committed;
-  auto& to = to_committed ? plastic_ext_.committed : plastic_ext_.trial;
-  const auto n = static_cast<Index>(flowed_.size());
-  for (Index i = 0; i < n; ++i)
-    if (flowed_[i]) {
-      const auto [begin, end] = family_range_[i];
-      std::copy(from.begin() + begin, from.begin() + end, to.begin() + begin);
-      flowed_[i] = 0;
-    }
-}
-
-template <int D>
 void LpsPlastic<D>::accept() {
-  copy_plastic_extensions(true);
+  plastic_ext_.accept();
   eq_plastic_.accept();
   axial_plastic_.accept();
   ductile_damage_.accept();
@@ -352,7 +329,7 @@ void LpsPlastic<D>::accept() {
 
 template <int D>
 void LpsPlastic<D>::reject() {
-  copy_plastic_extensions(false);
+  plastic_ext_.reject();
   eq_plastic_.reject();
   axial_plastic_.reject();
   ductile_damage_.reject();

@@ -51,8 +51,6 @@
 // the end of the evaluation that found it (its bonds act once more, as with LAMMPS' rule for
 // the critical stretch), so the check reads the state the forces came from.
 #include <optional>
-#include <utility>
-#include <vector>
 
 #include "solver/pd/constants.hpp"
 #include "solver/pd/model.hpp"
@@ -115,13 +113,7 @@ class LpsPlastic final : public Model<D> {
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
   std::vector<double> trial_eps_;                         // ε = e^d − p_n per bond side, last evaluation
-  std::vector<double> bond_length_;  // |y| per live bond side, last evaluation (the force pass reuses it)
-  // Particles whose bonds' trial p may differ from the committed one (they flowed in an
-  // evaluation not yet accepted or rejected): only theirs are copied at accept/reject.
-  std::vector<std::uint8_t> flowed_;
-  std::vector<std::pair<BondIndex, BondIndex>> family_range_;  // each family's bonds [begin, end)
-  void copy_plastic_extensions(bool to_committed);
-  std::vector<double> scale_;              // r per particle: the elastic part is r ε after the return
+  std::vector<double> scale_;                             // r per particle: the elastic part is r ε after the return
   std::vector<double> mean_term_;          // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
   std::vector<double> volumetric_energy_;  // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
   // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.
