@@ -25,32 +25,48 @@ Mat<3> embed_deformation(const Mat<D>& F) {
 
 template <int D>
 StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, double hardening_offset) const {
-  StressResult r;
   if (m_.model == MaterialModel::neo_hookean) {
+    StressResult r;
     r.kirchhoff = neo_hookean_kirchhoff(m_.elastic, embed_deformation<D>(F), r.J, r.energy);
     return r;
   }
+  return update(polar_log<D>(F), history, hardening_offset);
+}
 
+template <int D>
+StressResult Constitutive<D>::update(const PolarLog<D>& pl, PointHistory& history, double hardening_offset) const {
   // Log-strain laws: work in the unrotated frame, then rotate back with R.
-  const PolarLog<D> pl = polar_log<D>(F);
+  StressResult r;
   const Mat<3> eps = embed<D>(pl.log_U);
   Mat<3> T;
   double out_of_plane = 0.0;  // plane stress ε₃₃ or bar lateral strain
   if (m_.model == MaterialModel::linear_elastic) {
     switch (setting_) {
-      case core::Setting::plane_stress: T = hooke_plane_stress(m_.elastic, eps, out_of_plane); break;
-      case core::Setting::bar1d: T = hooke_bar(m_.elastic, eps, out_of_plane); break;
-      default: T = hooke_3d(m_.elastic, eps); break;
+      case core::Setting::plane_stress:
+        T = hooke_plane_stress(m_.elastic, eps, out_of_plane);
+        break;
+      case core::Setting::bar1d:
+        T = hooke_bar(m_.elastic, eps, out_of_plane);
+        break;
+      default:
+        T = hooke_3d(m_.elastic, eps);
+        break;
     }
     r.energy = setting_ == core::Setting::plane_stress
-                   ? 0.5 * (T(0, 0) * eps(0, 0) + T(1, 1) * eps(1, 1) + 2.0 * T(0, 1) * eps(0, 1))
-                   : elastic_energy(T, eps);
+        ? 0.5 * (T(0, 0) * eps(0, 0) + T(1, 1) * eps(1, 1) + 2.0 * T(0, 1) * eps(0, 1))
+        : elastic_energy(T, eps);
   } else {
     J2Result j;
     switch (setting_) {
-      case core::Setting::plane_stress: j = j2_return_plane_stress(m_.elastic, m_.j2, eps, history, hardening_offset); break;
-      case core::Setting::bar1d: j = j2_return_bar(m_.elastic, m_.j2, eps, history, hardening_offset); break;
-      default: j = j2_return_3d(m_.elastic, m_.j2, eps, history, hardening_offset); break;
+      case core::Setting::plane_stress:
+        j = j2_return_plane_stress(j2_, eps, history, hardening_offset);
+        break;
+      case core::Setting::bar1d:
+        j = j2_return_bar(m_.elastic, m_.j2, eps, history, hardening_offset);
+        break;
+      default:
+        j = j2_return_3d(j2_, eps, history, hardening_offset);
+        break;
     }
     T = j.T;
     out_of_plane = j.out_of_plane;
@@ -63,8 +79,20 @@ StressResult Constitutive<D>::update(const Mat<D>& F, PointHistory& history, dou
   if (setting_ == core::Setting::bar1d) trace += 2.0 * out_of_plane;
   r.J = std::exp(trace);
   r.out_of_plane_strain = out_of_plane;
-  const Mat<3> R = embed_deformation<D>(pl.R);
-  r.kirchhoff = R * T * R.transpose();
+  if constexpr (D == 2) {
+    // τ = R T Rᵀ with R = diag(R₂, 1): the in-plane block rotates, T₃₃ stays (the
+    // 3×3 product's arithmetic less its terms with a zero factor).
+    const Mat<2>& R = pl.R;
+    Mat<2> RT;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) RT(i, j) = R(i, 0) * T(0, j) + R(i, 1) * T(1, j);
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 2; ++j) r.kirchhoff(i, j) = RT(i, 0) * R(j, 0) + RT(i, 1) * R(j, 1);
+    r.kirchhoff(2, 2) = T(2, 2);
+  } else {
+    const Mat<3> R = embed_deformation<D>(pl.R);
+    r.kirchhoff = R * T * R.transpose();
+  }
   return r;
 }
 

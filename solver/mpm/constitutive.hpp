@@ -4,6 +4,8 @@
 // model and the out-of-plane kinematics by setting; every law is objective:
 // τ(QF) = Q τ(F) Qᵀ for any rotation Q.
 #include "solver/core/types.hpp"
+#include "solver/mpm/j2_plasticity.hpp"
+#include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/material_point.hpp"
 #include "solver/mpm/settings.hpp"
 
@@ -12,10 +14,16 @@ namespace pdmpm::mpm {
 template <int D>
 class Constitutive {
  public:
-  Constitutive(const Material& material, core::Setting setting) : m_(material), setting_(setting) {}
+  Constitutive(const Material& material, core::Setting setting)
+      : m_(material), setting_(setting), j2_(material.elastic, material.j2) {}
 
   // hardening_offset: ε̂_p − ε̄_p used by J2 hardening (non-local correction; 0 = local).
   StressResult update(const Mat<D>& F, PointHistory& history, double hardening_offset = 0.0) const;
+  // The log-strain laws (all but neo-Hookean) need F only through its polar
+  // decomposition: update(F) = update(polar_log(F)). The MPM step computes the
+  // decompositions in a pass of their own (simulation.cpp).
+  bool log_strain() const { return m_.model != MaterialModel::neo_hookean; }
+  StressResult update(const PolarLog<D>& polar, PointHistory& history, double hardening_offset = 0.0) const;
 
   const Material& material() const { return m_; }
   core::Setting setting() const { return setting_; }
@@ -23,6 +31,7 @@ class Constitutive {
  private:
   Material m_;
   core::Setting setting_;
+  J2Constants j2_;
 };
 
 // 3×3 embedding of a D×D tensor (zeros elsewhere) and of a deformation gradient

@@ -12,15 +12,25 @@ const double kSqrt2over3 = std::sqrt(2.0 / 3.0);
 const double kSqrt3over2 = std::sqrt(1.5);
 }  // namespace
 
-J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h,
-                      double hardening_offset) {
-  const double G = m.shear(), H = j2.hardening_modulus(m.E);
+J2Constants::J2Constants(const core::Elastic& m, const core::J2Hardening& j2)
+    : E(m.E),
+      nu(m.nu),
+      G(m.shear()),
+      lame(m.lame()),
+      H(j2.hardening_modulus(m.E)),
+      yield_stress(j2.yield_stress),
+      plane_stress_modulus(m.E / (1.0 - m.nu * m.nu)),
+      thickness_strain(-m.nu / (1.0 - m.nu)),
+      c1(m.E / (3.0 * (1.0 - m.nu))) {}
+
+J2Result j2_return_3d(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = k.G, H = k.H;
   const Mat<3> eps_e_trial = eps - h.plastic_strain;
-  const Mat<3> T_trial = hooke_3d(m, eps_e_trial);
+  const Mat<3> T_trial = k.lame * eps_e_trial.trace() * Mat<3>::Identity() + 2.0 * G * eps_e_trial;  // hooke_3d
   const Mat<3> s = T_trial - (T_trial.trace() / 3.0) * Mat<3>::Identity();
   const double s_norm = s.norm();
   const double q = kSqrt3over2 * s_norm;  // von Mises equivalent of the trial stress
-  const double kappa = j2.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
+  const double kappa = k.yield_stress + H * (h.eq_plastic_strain + hardening_offset);
   J2Result r;
   if (q <= kappa) {
     r.T = T_trial;
@@ -40,22 +50,41 @@ J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const
   return r;
 }
 
-J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h,
-                                double hardening_offset) {
-  const double G = m.shear(), H = j2.hardening_modulus(m.E), E = m.E, nu = m.nu;
-  Mat<3> eps_e = eps - h.plastic_strain;
-  double e33_el = 0.0;
-  const Mat<3> T_trial = hooke_plane_stress(m, eps_e, e33_el);
+J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
+  const double G = k.G, H = k.H, E = k.E, nu = k.nu;
+  // The elastic trial on the in-plane block (hooke_plane_stress's arithmetic; the
+  // strains are symmetric, so ε_e,10 = ε_e,01).
+  const double c = k.plane_stress_modulus;
+  const double e00 = eps(0, 0) - h.plastic_strain(0, 0), e11 = eps(1, 1) - h.plastic_strain(1, 1);
+  const double e01 = eps(0, 1) - h.plastic_strain(0, 1), tr = e00 + e11;
+  const double t00 = c * ((1.0 - nu) * e00 + nu * tr), t11 = c * ((1.0 - nu) * e11 + nu * tr);
+  const double t01 = c * (1.0 - nu) * e01;
+  const double e33_el = k.thickness_strain * tr;
   // Spectral coordinates of the in-plane stress in the common eigenbasis of the
   // plane-stress elasticity and the projection P (eigenvalues 1/3, 1, 2).
-  const double a1 = (T_trial(0, 0) + T_trial(1, 1)) / std::sqrt(2.0);
-  const double a2 = (T_trial(1, 1) - T_trial(0, 0)) / std::sqrt(2.0);
-  const double a3 = T_trial(0, 1);
-  const double c1 = E / (3.0 * (1.0 - nu));  // (elastic eigenvalue) × (P eigenvalue), mode 1
-  const double c2 = 2.0 * G;                 // modes 2 and 3
+  const double a1 = (t00 + t11) / std::sqrt(2.0);
+  const double a2 = (t11 - t00) / std::sqrt(2.0);
+  const double a3 = t01;
   const double alpha0 = h.eq_plastic_strain + hardening_offset;
   // φ²(Δγ) = σᵀPσ after the return, f(Δγ) = ½φ² − ⅓ κ²(α₀ + sqrt(2/3) Δγ φ).
   const double s1 = a1 * a1 / 3.0, s2 = a2 * a2 + 2.0 * a3 * a3;
+  J2Result r;
+  {
+    // f(0): the elastic check, most points of a body most steps.
+    const double kappa = k.yield_stress + H * alpha0;
+    if (0.5 * (s1 + s2) - kappa * kappa / 3.0 <= 0.0) {
+      r.T(0, 0) = t00;
+      r.T(1, 1) = t11;
+      r.T(0, 1) = r.T(1, 0) = t01;
+      r.out_of_plane = e33_el + h.plastic_strain(2, 2);
+      // ½ T : ε_e summed as elastic_energy sums the 3×3 array (pairwise), T₃₃ = 0.
+      const double p00 = t00 * e00, p11 = t11 * e11, p01 = t01 * e01;
+      r.energy = 0.5 * ((p00 + p11) + (p01 + p01));
+      return r;
+    }
+  }
+  const double c1 = k.c1;     // (elastic eigenvalue) × (P eigenvalue), mode 1
+  const double c2 = 2.0 * G;  // modes 2 and 3
   auto phi2 = [&](double dg) {
     const double d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
     return s1 * d1 * d1 + s2 * d2 * d2;
@@ -65,21 +94,14 @@ J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening&
     const double d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
     const double p2 = s1 * d1 * d1 + s2 * d2 * d2, p = std::sqrt(p2);
     const double dp2 = -2.0 * (c1 * s1 * d1 * d1 * d1 + c2 * s2 * d2 * d2 * d2);
-    const double kappa = j2.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
+    const double kappa = k.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
     const double dp = p > 0.0 ? 0.5 * dp2 / p : 0.0;
     const double dkappa = H * kSqrt2over3 * (p + dg * dp);
     df = 0.5 * dp2 - (2.0 / 3.0) * kappa * dkappa;
     return 0.5 * p2 - kappa * kappa / 3.0;
   };
-  J2Result r;
   double df = 0.0;
   const double f0 = f(0.0, df);
-  if (f0 <= 0.0) {
-    r.T = T_trial;
-    r.out_of_plane = e33_el + h.plastic_strain(2, 2);
-    r.energy = elastic_energy(T_trial, eps_e);
-    return r;
-  }
   // f decreases monotonically in Δγ (Simo & Hughes 1998 §3.4.2). Newton from Δγ = 0,
   // where f > 0: a step's plastic increment is tiny, and from the left the iterates
   // approach the root from one side (measured on a yielding plate: 4–5 iterations).
@@ -88,7 +110,7 @@ J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening&
   // only then — an evaluation fewer per yielding point otherwise.
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
   double dg = 0.0, fv = f0;
-  const double scale = j2.yield_stress * j2.yield_stress;
+  const double scale = k.yield_stress * k.yield_stress;
   for (int it = 0; it < 200; ++it) {
     if (std::abs(fv) <= 1e-15 * scale || (std::isfinite(hi) && hi - lo <= 1e-16 * hi)) break;
     double next = dg - fv / df;
@@ -129,7 +151,7 @@ J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening&
   r.T = T;
   r.d_eq_plastic = d_alpha;
   r.dissipation = (T.array() * d_eps_p.array()).sum();
-  eps_e = eps - h.plastic_strain;
+  const Mat<3> eps_e = eps - h.plastic_strain;
   r.energy = 0.5 * (T(0, 0) * eps_e(0, 0) + T(1, 1) * eps_e(1, 1) + 2.0 * T(0, 1) * eps_e(0, 1));
   r.out_of_plane = -nu / E * (T(0, 0) + T(1, 1)) + h.plastic_strain(2, 2);
   return r;

@@ -12,22 +12,42 @@
 namespace pdmpm::mpm {
 
 struct J2Result {
-  Mat<3> T = Mat<3>::Zero();   // rotated Kirchhoff stress
-  double out_of_plane = 0.0;   // plane stress ε₃₃ / bar lateral strain (total, log)
-  double energy = 0.0;         // ½ T : ε_e
-  double dissipation = 0.0;    // T : Δε_p
-  double d_eq_plastic = 0.0;   // Δε̄_p of this update
+  Mat<3> T = Mat<3>::Zero();  // rotated Kirchhoff stress
+  double out_of_plane = 0.0;  // plane stress ε₃₃ / bar lateral strain (total, log)
+  double energy = 0.0;        // ½ T : ε_e
+  double dissipation = 0.0;   // T : Δε_p
+  double d_eq_plastic = 0.0;  // Δε̄_p of this update
+};
+
+// The material constants the returns use, computed once per material: each is a
+// division, and a division in every point's dependency chain costs more than the
+// rest of an elastic update (same expressions, so the same values).
+struct J2Constants {
+  J2Constants(const core::Elastic& m, const core::J2Hardening& j2);
+  double E, nu, G, lame, H, yield_stress;
+  double plane_stress_modulus;  // E/(1 − ν²)
+  double thickness_strain;      // −ν/(1 − ν): ε₃₃ per in-plane trace, plane stress
+  double c1;                    // E/(3(1 − ν)), plane-stress spectral mode 1
 };
 
 // solid3d, plane_strain, uniaxial_strain: radial return (Simo & Hughes 1998, box 3.1).
-J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_3d(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+inline J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h,
+                             double hardening_offset) {
+  return j2_return_3d(J2Constants(m, j2), eps, h, hardening_offset);
+}
 
 // Plane stress (σ₃₃ = σ₁₃ = σ₂₃ = 0): the plane-stress projected return map of
 // Simo & Taylor (1986) / Simo & Hughes (1998) §3.4, solved for the consistency
 // parameter by safeguarded Newton in the spectral basis of the projection P.
-J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+inline J2Result j2_return_plane_stress(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps,
+                                       PointHistory& h, double hardening_offset) {
+  return j2_return_plane_stress(J2Constants(m, j2), eps, h, hardening_offset);
+}
 
 // Bar (uniaxial stress): 1D return map.
-J2Result j2_return_bar(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h, double hardening_offset);
+J2Result j2_return_bar(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h,
+                       double hardening_offset);
 
 }  // namespace pdmpm::mpm

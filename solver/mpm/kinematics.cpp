@@ -48,17 +48,25 @@ PolarLog<1> polar_log<1>(const Mat<1>& F) {
 
 template <>
 PolarLog<2> polar_log<2>(const Mat<2>& F) {
-  if (!(F.determinant() > 0.0)) throw RunError("deformation gradient with det F ≤ 0 (particle inverted)");
+  // Scalar code on purpose: Eigen's packet products read R back as 16-byte loads
+  // over two 8-byte stores, a store-forwarding stall on every point (the same
+  // arithmetic: a sum of two products rounds alike in either order).
+  const double f00 = F(0, 0), f01 = F(0, 1), f10 = F(1, 0), f11 = F(1, 1);
+  const double det = f00 * f11 - f10 * f01;
+  if (!(det > 0.0)) throw RunError("deformation gradient with det F ≤ 0 (particle inverted)");
   // The rotation of a 2×2 polar decomposition is the one that makes RᵀF symmetric:
   // R = [c −s; s c] with (c, s) ∥ (F₀₀ + F₁₁, F₁₀ − F₀₁) — a norm, no angle needed.
-  const double a = F(0, 0) + F(1, 1), b = F(1, 0) - F(0, 1);
+  const double a = f00 + f11, b = f10 - f01;
   const double inv = 1.0 / std::sqrt(a * a + b * b);
   const double c = a * inv, s = b * inv;
   PolarLog<2> p;
   p.R << c, -s, s, c;
-  Mat<2> U = p.R.transpose() * F;
-  U = 0.5 * (U + U.transpose()).eval();
-  p.log_U = log_spd2(U, F.determinant());  // det U = det F
+  // U = RᵀF, symmetrised.
+  const double u00 = c * f00 + s * f10, u11 = -s * f01 + c * f11;
+  const double u01 = c * f01 + s * f11, u10 = -s * f00 + c * f10;
+  Mat<2> U;
+  U << 0.5 * (u00 + u00), 0.5 * (u01 + u10), 0.5 * (u10 + u01), 0.5 * (u11 + u11);
+  p.log_U = log_spd2(U, det);  // det U = det F
   return p;
 }
 

@@ -33,6 +33,20 @@ class PhaseClock {
   double last_ = omp_get_wtime();
 };
 
+// The particle loops run in the schedule's order: cell block by cell block, so
+// consecutive particles are runs of a lattice row (8 in 2D at two sites per cell),
+// too short for the hardware prefetcher, and each loop body is long enough that the
+// next particle's loads are not issued early. Each loop asks for the arrays of the
+// particle kAhead positions on (measured on the 200² plate: see solver/mpm/README.md).
+constexpr Index kAhead = 8;
+
+template <class T>
+void prefetch(const std::vector<T>& a, Index p) {
+  const char* first = reinterpret_cast<const char*>(a.data() + p);
+  __builtin_prefetch(first);
+  if constexpr (sizeof(T) > 8) __builtin_prefetch(first + sizeof(T) - 1);
+}
+
 double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
 
 }  // namespace
@@ -179,6 +193,12 @@ void Simulation<D>::compute_stencils() {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
     for (Index k = 0; k < na; ++k) {
       const Index p = order[k];
+      if (k + kAhead < na) {
+        const Index q = order[k + kAhead];
+        prefetch(particles_.x0, q);
+        prefetch(particles_.u, q);
+        prefetch(state_.half_width, q);
+      }
       const Stencil<D> st =
           make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
       if (!inside_grid(st)) bad = std::min(bad, p);
@@ -224,7 +244,19 @@ void Simulation<D>::scatter(Scatter what) {
     }
   }
   const IVec<D> stride = grid_.stride;
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
   schedule_.for_each([&](Index k, Index p) {
+    if (k + kAhead < na) {
+      const Index q = order[k + kAhead];
+      prefetch(state_.mass, q);
+      prefetch(particles_.v, q);
+      if (what.forces) {
+        prefetch(particles_.volume, q);
+        prefetch(state_.kirchhoff, q);
+        prefetch(ext_force_, q);
+      }
+    }
     const double m = state_.mass[p];
     const Vec<D> mv = m * particles_.v[p];
     const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
@@ -270,18 +302,22 @@ void Simulation<D>::update_nonlocal() {
   for (Index p : active_) state_.eq_plastic_hardening[p] = (1.0 - m) * a[p] + m * avg[p];
 }
 
+// Three passes over the particles in the stencils' order: F from the grid velocity,
+// the polar decompositions of the log-strain laws, the law itself. The decomposition
+// is a long chain of dependent operations (two square roots, two divisions, a
+// series, a logarithm); in a pass of its own the processor overlaps the chains of
+// successive particles, which one long loop body does not let it do.
 template <int D>
 void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
-  const std::vector<Index>& order = schedule_.order();  // the stencils' order
+  const std::vector<Index>& order = schedule_.order();
   const Index na = static_cast<Index>(order.size());
   const IVec<D> stride = grid_.stride;
-  const core::DuctileFailure& fail = settings_.failure;
   const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
   const double lp0 = 0.5 * particles_.lattice.spacing;
-  Index bad = std::numeric_limits<Index>::max();
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+#pragma omp parallel for schedule(static) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
+    if (k + kAhead < na) prefetch(state_.F, order[k + kAhead]);
     Mat<D> L = Mat<D>::Zero();
     for_each_grid_node<D>(stencil_[k], K_, stride,
                           [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
@@ -289,13 +325,55 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
     if (stretch_domains) {
       for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
     }
+  }
+
+  Index bad = std::numeric_limits<Index>::max();
+  auto throw_if_bad = [&] {
+    if (bad != std::numeric_limits<Index>::max())
+      throw RunError(
+          fmt::format("MPM step {}: particle {} inverted (det F ≤ 0); the step {} s may be too large "
+                      "(stable step estimate {} s)",
+                      steps_, bad, dt, stable_dt()));
+  };
+  const bool log_strain = constitutive_.log_strain();
+  if (log_strain) {
+    polar_.resize(order.size());
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+    for (Index k = 0; k < na; ++k) {
+      const Index p = order[k];
+      if (k + kAhead < na) prefetch(state_.failed, order[k + kAhead]);
+      if (state_.failed[p]) continue;
+      try {
+        polar_[k] = polar_log<D>(state_.F[p]);
+      } catch (const RunError&) {
+        bad = std::min(bad, p);
+      }
+    }
+    throw_if_bad();
+  }
+
+  const core::DuctileFailure& fail = settings_.failure;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = order[k];
+    if (k + kAhead < na) {
+      const Index q = order[k + kAhead];
+      prefetch(state_.history, q);
+      prefetch(state_.eq_plastic_hardening, q);
+      prefetch(state_.kirchhoff, q);
+      prefetch(state_.stress, q);
+      prefetch(state_.J, q);
+      prefetch(state_.out_of_plane_strain, q);
+      prefetch(state_.energy, q);
+      prefetch(state_.dissipation, q);
+    }
     if (state_.failed[p]) continue;  // a failed particle carries no stress
     PointHistory& hist = state_.history[p];
     const double alpha_before = hist.eq_plastic_strain;
     const double offset = state_.eq_plastic_hardening[p] - alpha_before;
     StressResult r;
     try {
-      r = constitutive_.update(state_.F[p], hist, offset);
+      r = log_strain ? constitutive_.update(polar_[k], hist, offset) : constitutive_.update(state_.F[p], hist, offset);
     } catch (const RunError&) {
       bad = std::min(bad, p);
       continue;
@@ -325,11 +403,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
       }
     }
   }
-  if (bad != std::numeric_limits<Index>::max())
-    throw RunError(
-        fmt::format("MPM step {}: particle {} inverted (det F ≤ 0); the step {} s may be too large "
-                    "(stable step estimate {} s)",
-                    steps_, bad, dt, stable_dt()));
+  throw_if_bad();
 }
 
 template <int D>
@@ -500,6 +574,10 @@ void Simulation<D>::grid_to_particles(double t, double dt) {
 #pragma omp parallel for schedule(static) reduction(&& : finite) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
+    if (k + kAhead < na) {
+      prefetch(particles_.v, order[k + kAhead]);
+      prefetch(particles_.u, order[k + kAhead]);
+    }
     Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
     for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
       v_pic += w * grid_.velocity_new[node];

@@ -146,6 +146,7 @@ class Simulation {
   ScatterSchedule<D> schedule_;
   std::vector<Index> active_;
   std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
+  std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
   std::vector<Vec<D>> ext_force_;    // per particle external force this step (N)
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
