@@ -31,7 +31,8 @@ class ScatterSchedule {
       nblocks_[a] = (grid.cells()[a] + kBlockCells - 1) / kBlockCells;
       nb *= nblocks_[a];
     }
-    std::vector<Index> block(particles.size());
+    std::vector<Index>& block = block_;
+    block.resize(particles.size());
     start_.assign(static_cast<std::size_t>(nb) + 1, 0);
     for (std::size_t k = 0; k < particles.size(); ++k) {
       Index b = 0, s = 1;
@@ -44,7 +45,8 @@ class ScatterSchedule {
     }
     for (Index b = 0; b < nb; ++b) start_[b + 1] += start_[b];
     order_.resize(particles.size());
-    std::vector<Index> fill(start_.begin(), start_.end() - 1);
+    std::vector<Index>& fill = fill_;
+    fill.assign(start_.begin(), start_.end() - 1);
     for (std::size_t k = 0; k < particles.size(); ++k) order_[fill[block[k]]++] = particles[k];
     for (auto& c : colour_blocks_) c.clear();
     for (Index b = 0; b < nb; ++b) {
@@ -81,6 +83,7 @@ class ScatterSchedule {
  private:
   IVec<D> nblocks_ = IVec<D>::Ones();
   std::vector<Index> start_, order_;
+  std::vector<Index> block_, fill_;  // scratch of build(), kept to spare an allocation per step
   std::array<std::vector<Index>, kColours> colour_blocks_;
 };
 

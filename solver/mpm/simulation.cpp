@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -171,7 +172,8 @@ void Simulation<D>::refresh_active() {
 template <int D>
 void Simulation<D>::compute_stencils() {
   const Index na = static_cast<Index>(active_.size());
-  std::vector<IVec<D>> cell(active_.size());
+  std::vector<IVec<D>>& cell = cell_;
+  cell.resize(active_.size());
   Index bad = std::numeric_limits<Index>::max();
   const IVec<D> cells = grid_.cells();
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
@@ -244,6 +246,7 @@ void Simulation<D>::scatter(Scatter what) {
     }
   }
   const IVec<D> stride = grid_.stride;
+  const bool external = any_external_force_;
   const std::vector<Index>& order = schedule_.order();
   const Index na = static_cast<Index>(order.size());
   schedule_.for_each([&](Index k, Index p) {
@@ -266,7 +269,7 @@ void Simulation<D>::scatter(Scatter what) {
       if (what.momentum) grid_.momentum[node] += w * mv;
       if (what.forces) {
         grid_.force_internal[node] -= Vtau * g;
-        grid_.force_external[node] += w * fe;
+        if (external) grid_.force_external[node] += w * fe;  // else it stays zero
       }
     });
   });
@@ -468,12 +471,12 @@ void Simulation<D>::step(double dt) {
 
   update_grid(t, dt);
   phase_seconds_.grid += clock.lap();
-  grid_to_particles(t, dt);
+  // MUSL remaps: the new particle momenta back to the grid, the stress from that velocity.
+  const bool musl = settings_.scheme == UpdateScheme::musl;
+  grid_to_particles(t, dt, musl);
   phase_seconds_.g2p += clock.lap();
 
-  if (settings_.scheme == UpdateScheme::musl) {
-    // Remap: the new particle momenta back to the grid, the stress from that velocity.
-    scatter({.momentum = true});
+  if (musl) {
     grid_velocity_from_momentum(grid_.velocity_new);
     boundary_.constrain(grid_.velocity_new, t + dt);
     boundary_.mirror(grid_.velocity_new);
@@ -509,6 +512,8 @@ void Simulation<D>::prepare_step(double t) {
         ext_force_[p] += r * value * particles_.volume[p] / particles_.lattice.spacing;
       }
   }
+  any_external_force_ = false;
+  for (Index p : active_) any_external_force_ = any_external_force_ || !ext_force_[p].isZero(0.0);
   update_nonlocal();
 }
 
@@ -563,20 +568,22 @@ void Simulation<D>::update_grid(double t, double dt) {
   }
 }
 
+// G2P: particle velocity (FLIP/PIC blend) and position, in the stencils' order. With
+// `remap` (MUSL) each particle's new momentum goes back to the grid in the same pass,
+// run by the scatter schedule: the remap writes only p_I, which G2P does not read, and
+// each node still sums its particles in the schedule's order.
 template <int D>
-void Simulation<D>::grid_to_particles(double t, double dt) {
-  // G2P: particle velocity (FLIP/PIC blend) and position, in the stencils' order.
+void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   const std::vector<Index>& order = schedule_.order();
   const Index na = static_cast<Index>(order.size());
   const IVec<D> stride = grid_.stride;
   const double flip = settings_.flip;
-  bool finite = true;
-#pragma omp parallel for schedule(static) reduction(&& : finite) if (na >= kParallelMin)
-  for (Index k = 0; k < na; ++k) {
-    const Index p = order[k];
+  std::atomic<bool> finite{true};
+  auto move_particle = [&](Index k, Index p) {
     if (k + kAhead < na) {
       prefetch(particles_.v, order[k + kAhead]);
       prefetch(particles_.u, order[k + kAhead]);
+      if (remap) prefetch(state_.mass, order[k + kAhead]);
     }
     Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
     for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
@@ -585,9 +592,24 @@ void Simulation<D>::grid_to_particles(double t, double dt) {
     });
     particles_.v[p] = flip * (particles_.v[p] + dv) + (1.0 - flip) * v_pic;
     particles_.u[p] += dt * v_pic;
-    finite = finite && particles_.v[p].allFinite() && particles_.u[p].allFinite();
+    if (!particles_.v[p].allFinite() || !particles_.u[p].allFinite()) finite.store(false, std::memory_order_relaxed);
+    if (remap) {
+      const Vec<D> mv = state_.mass[p] * particles_.v[p];
+      for_each_grid_node<D>(stencil_[k], K_, stride,
+                            [&](Index node, double w, const Vec<D>&) { grid_.momentum[node] += w * mv; });
+    }
+  };
+  if (remap) {
+    const Index N = grid_.size();
+#pragma omp parallel for schedule(static) if (N >= kParallelMin)
+    for (Index i = 0; i < N; ++i) grid_.momentum[i].setZero();
+    schedule_.for_each(move_particle);
+    boundary_.fold(nullptr, &grid_.momentum);
+  } else {
+#pragma omp parallel for schedule(static) if (na >= kParallelMin)
+    for (Index k = 0; k < na; ++k) move_particle(k, order[k]);
   }
-  if (!finite) {
+  if (!finite.load()) {
     const Energies e = energies();
     throw RunError(
         fmt::format("MPM step {} (t = {} s): non-finite particle velocity; kinetic energy {} J, strain "

@@ -48,9 +48,9 @@ struct Energies {
 // Wall time of the phases of an MPM step (seconds), accumulated over steps.
 struct StepPhaseSeconds {
   double prepare = 0.0;  // stencils and scatter schedule, external forces, nonlocal hardening
-  double p2g = 0.0;      // scatters to the grid (MUSL's remap included), vⁿ and its constraints
+  double p2g = 0.0;      // scatter to the grid, vⁿ and its constraints (MUSL: the remapped v's too)
   double grid = 0.0;     // grid momentum update, constraints at tⁿ⁺¹, work booking
-  double g2p = 0.0;      // particle velocities and positions
+  double g2p = 0.0;      // particle velocities and positions (MUSL: with the remap's scatter)
   double stress = 0.0;   // velocity gradient, F, constitutive update, failure
   double total() const { return prepare + p2g + grid + g2p + stress; }
 };
@@ -124,7 +124,7 @@ class Simulation {
  private:
   void prepare_step(double t);
   void update_grid(double t, double dt);
-  void grid_to_particles(double t, double dt);
+  void grid_to_particles(double t, double dt, bool remap);
   void initialise_particle(Index p);
   void compute_stencils();
   struct Scatter {
@@ -146,8 +146,10 @@ class Simulation {
   ScatterSchedule<D> schedule_;
   std::vector<Index> active_;
   std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
+  std::vector<IVec<D>> cell_;        // per active particle this step: its cell (scratch of compute_stencils)
   std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
   std::vector<Vec<D>> ext_force_;    // per particle external force this step (N)
+  bool any_external_force_ = false;  // some active particle has one this step
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;
