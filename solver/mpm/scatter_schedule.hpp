@@ -24,25 +24,33 @@ class ScatterSchedule {
   static constexpr int kBlockCells = 4;
   static constexpr int kColours = 1 << D;
 
-  // cell[k] = cell coordinates of particles[k] (each in [0, cells) per axis).
+  // cell[k] = cell coordinates of particles[k] (each in [0, cells) per axis). A step
+  // rarely moves a particle to another block: when the particles and their blocks are
+  // those of the last build, the schedule stands as it is.
   void build(const Grid<D>& grid, const std::vector<Index>& particles, const std::vector<IVec<D>>& cell) {
     Index nb = 1;
+    IVec<D> nblocks;
     for (int a = 0; a < D; ++a) {
-      nblocks_[a] = (grid.cells()[a] + kBlockCells - 1) / kBlockCells;
-      nb *= nblocks_[a];
+      nblocks[a] = (grid.cells()[a] + kBlockCells - 1) / kBlockCells;
+      nb *= nblocks[a];
     }
+    bool same = nblocks == nblocks_ && particles == particles_ && !order_.empty();
+    nblocks_ = nblocks;
     std::vector<Index>& block = block_;
     block.resize(particles.size());
-    start_.assign(static_cast<std::size_t>(nb) + 1, 0);
     for (std::size_t k = 0; k < particles.size(); ++k) {
       Index b = 0, s = 1;
       for (int a = 0; a < D; ++a) {
         b += (cell[k][a] / kBlockCells) * s;
         s *= nblocks_[a];
       }
+      same = same && block[k] == b;
       block[k] = b;
-      ++start_[b + 1];
     }
+    if (same) return;
+    particles_ = particles;
+    start_.assign(static_cast<std::size_t>(nb) + 1, 0);
+    for (std::size_t k = 0; k < particles.size(); ++k) ++start_[block[k] + 1];
     for (Index b = 0; b < nb; ++b) start_[b + 1] += start_[b];
     order_.resize(particles.size());
     std::vector<Index>& fill = fill_;
@@ -83,7 +91,8 @@ class ScatterSchedule {
  private:
   IVec<D> nblocks_ = IVec<D>::Ones();
   std::vector<Index> start_, order_;
-  std::vector<Index> block_, fill_;  // scratch of build(), kept to spare an allocation per step
+  std::vector<Index> particles_, block_;  // of the last build: the particles and their blocks
+  std::vector<Index> fill_;               // scratch of build()
   std::array<std::vector<Index>, kColours> colour_blocks_;
 };
 
