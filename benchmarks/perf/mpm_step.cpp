@@ -5,7 +5,9 @@
 
 #include <memory>
 
+#include "benchmarks/perf/mpm_bytes.hpp"
 #include "benchmarks/perf/perf_output.hpp"
+#include "benchmarks/perf/triad.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/mpm_setup.hpp"
 #include "solver/sim/pd_setup.hpp"
@@ -109,6 +111,8 @@ json mpm_step(const Options& o) {
   struct Case {
     int D, n;
   };
+  Triad triad;  // the memory floor's bandwidth, measured between the samples
+  std::vector<std::vector<double>> bandwidth(2);
   const std::vector<Case> cases =
       o.refine <= 1 ? std::vector<Case>{{2, 100}, {3, 20}} : std::vector<Case>{{2, 100}, {2, 200}, {3, 20}, {3, 40}};
   for (const Case& c : cases) {
@@ -121,6 +125,7 @@ json mpm_step(const Options& o) {
     for (int r = 0; r < o.reps; ++r)
       for (int ti = 0; ti < 2; ++ti) {
         omp_set_num_threads(ti == 0 ? 1 : threads);
+        bandwidth[ti].push_back(triad.bytes_per_second(ti == 0 ? 1 : threads));
         for (std::size_t b = 0; b < bodies.size(); ++b) {
           const mpm::StepPhaseSeconds p0 = bodies[b]->phases();
           const double t0 = omp_get_wtime();
@@ -141,15 +146,19 @@ json mpm_step(const Options& o) {
     json entry = {{"dimension", c.D}, {"particles", bodies[0]->particles}, {"steps", steps}, {"reps", o.reps}};
     for (std::size_t b = 0; b < bodies.size(); ++b)
       entry["seconds_per_particle_step"][bodies[b]->label] = {{"1", t[b][0]}, {std::to_string(threads), t[b][1]}};
+    const MpmByteAccount bytes = c.D == 2 ? mpm_bytes_per_particle_step<2>() : mpm_bytes_per_particle_step<3>();
+    entry["bytes_per_particle_step"] = bytes.total;
     for (int ti = 0; ti < 2; ++ti) {
       const double n_ps = static_cast<double>(steps) * o.reps * bodies[0]->particles;
       const auto& p = phase_sum[ti];
-      phase_rows.push_back({size, ti == 0 ? 1 : threads, fmt::format("{:.3g}", 1.0 / median(t[0][ti]) / 1e6),
-                            fmt::format("{:.1f}", 1e9 * p.prepare / n_ps), fmt::format("{:.1f}", 1e9 * p.p2g / n_ps),
-                            fmt::format("{:.1f}", 1e9 * p.grid / n_ps), fmt::format("{:.1f}", 1e9 * p.g2p / n_ps),
-                            fmt::format("{:.1f}", 1e9 * p.stress / n_ps),
-                            fmt::format("{:.2f}", median(t[0][ti]) / median(t[1][ti])),
-                            fmt::format("{:.2f}", median(t[0][ti]) / median(t[2][ti]))});
+      const double floor_ns = 1e9 * bytes.total / median(bandwidth[ti]);
+      phase_rows.push_back(
+          {size, ti == 0 ? 1 : threads, fmt::format("{:.3g}", 1.0 / median(t[0][ti]) / 1e6),
+           fmt::format("{:.1f}", 1e9 * p.prepare / n_ps), fmt::format("{:.1f}", 1e9 * p.p2g / n_ps),
+           fmt::format("{:.1f}", 1e9 * p.grid / n_ps), fmt::format("{:.1f}", 1e9 * p.g2p / n_ps),
+           fmt::format("{:.1f}", 1e9 * p.stress / n_ps), fmt::format("{:.2f}", median(t[0][ti]) / median(t[1][ti])),
+           fmt::format("{:.2f}", median(t[0][ti]) / median(t[2][ti])), fmt::format("{:.0f}", bytes.total),
+           fmt::format("{:.1f}", floor_ns), fmt::format("{:.1f}", 1e9 * median(t[0][ti]) / floor_ns)});
     }
     const Ratio mpm_scaling = ratio_of_medians(t[0][0], t[0][1]);
     entry["mpm_speedup_threads"] = to_json(mpm_scaling);
@@ -197,12 +206,18 @@ json mpm_step(const Options& o) {
                      {"title", "MPM step by phase (ns per particle-step) and against PD"},
                      {"columns",
                       {"body", "threads", "MPM M particle-steps/s", "prepare", "P2G", "grid", "G2P", "stress",
-                       "MPM / LPS", "MPM / lps_plastic"}},
+                       "MPM / LPS", "MPM / lps_plastic", "bytes", "memory floor", "step / floor"}},
                      {"rows", phase_rows},
                      {"caption",
-                      "prepare: stencils, scatter schedule, external forces; P2G: the scatters (MUSL's remap "
-                      "included) and the nodal velocity; grid: momentum update, constraints, work booking; "
-                      "stress: velocity gradient, F, J2 return. Ratios: seconds per particle-step, medians."}});
+                      "Phases in ns per particle-step. prepare: stencils, scatter schedule, external forces; "
+                      "P2G: the scatter, the nodal velocities (MUSL's remapped ones too); grid: momentum update, "
+                      "constraints, work booking; G2P: particle velocities and positions with MUSL's remap "
+                      "scatter; "
+                      "stress: velocity gradient, F, polar decomposition, J2 return. Ratios: seconds per "
+                      "particle-step, medians. bytes: what the step must move per particle from the data layout "
+                      "(benchmarks/perf/mpm_bytes.hpp); memory floor (ns): those bytes at the triad bandwidth "
+                      "measured between the samples; step / floor far above 1 means the step is bound by "
+                      "arithmetic and latency, not by memory bandwidth."}});
   return out;
 }
 

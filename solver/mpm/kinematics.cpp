@@ -91,8 +91,22 @@ PolarLog<3> polar_log<3>(const Mat<3>& F) {
 template <int D>
 Mat<D> cayley_increment(const Mat<D>& L, double dt) {
   const Mat<D> I = Mat<D>::Identity();
-  const Mat<D> A = I - 0.5 * dt * L;
-  return A.inverse() * (I + 0.5 * dt * L);
+  if constexpr (D == 2) {
+    // Scalar code for the 2D hot path, Eigen's arithmetic (the 2×2 inverse by
+    // 1/det times the adjugate, then sums of two products) without its packet
+    // stores and reloads.
+    const double h = 0.5 * dt;
+    const double a00 = 1.0 - h * L(0, 0), a01 = 0.0 - h * L(0, 1), a10 = 0.0 - h * L(1, 0), a11 = 1.0 - h * L(1, 1);
+    const double b00 = 1.0 + h * L(0, 0), b01 = 0.0 + h * L(0, 1), b10 = 0.0 + h * L(1, 0), b11 = 1.0 + h * L(1, 1);
+    const double inv_det = 1.0 / (a00 * a11 - a10 * a01);
+    const double i00 = a11 * inv_det, i01 = -a01 * inv_det, i10 = -a10 * inv_det, i11 = a00 * inv_det;
+    Mat<2> out;
+    out << i00 * b00 + i01 * b10, i00 * b01 + i01 * b11, i10 * b00 + i11 * b10, i10 * b01 + i11 * b11;
+    return out;
+  } else {
+    const Mat<D> A = I - 0.5 * dt * L;
+    return A.inverse() * (I + 0.5 * dt * L);
+  }
 }
 
 template Mat<1> cayley_increment(const Mat<1>&, double);

@@ -288,7 +288,10 @@ template <int D>
 void Simulation<D>::update_nonlocal() {
   const Index n = particles_.size();
   if (!settings_.nonlocal.enabled) {
-    for (Index p : active_) state_.eq_plastic_hardening[p] = state_.history[p].eq_plastic_strain;
+    const Index na = static_cast<Index>(active_.size());
+#pragma omp parallel for schedule(static) if (na >= kParallelMin)
+    for (Index k = 0; k < na; ++k)
+      state_.eq_plastic_hardening[active_[k]] = state_.history[active_[k]].eq_plastic_strain;
     return;
   }
   std::vector<Vec<D>> x(n, Vec<D>::Zero());
@@ -502,7 +505,11 @@ void Simulation<D>::prepare_step(double t) {
   compute_stencils();
   // External forces (time tⁿ).
   ext_force_.assign(particles_.size(), Vec<D>::Zero());
-  for (Index p : active_) ext_force_[p] = external_force(p, t);
+  const Index na = static_cast<Index>(active_.size());
+  // (serial with a scene-expression body force: its evaluator is not known to be re-entrant)
+  const bool parallel = na >= kParallelMin && !settings_.body_acceleration;
+#pragma omp parallel for schedule(static) if (parallel)
+  for (Index k = 0; k < na; ++k) ext_force_[active_[k]] = external_force(active_[k], t);
   for (std::size_t i = 0; i < settings_.tractions.size(); ++i) {
     const Traction<D>& tr = settings_.tractions[i];
     const double r = ramp(t, tr.ramp_time);
@@ -512,8 +519,10 @@ void Simulation<D>::prepare_step(double t) {
         ext_force_[p] += r * value * particles_.volume[p] / particles_.lattice.spacing;
       }
   }
-  any_external_force_ = false;
-  for (Index p : active_) any_external_force_ = any_external_force_ || !ext_force_[p].isZero(0.0);
+  bool any = false;
+#pragma omp parallel for schedule(static) reduction(|| : any) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) any = any || !ext_force_[active_[k]].isZero(0.0);
+  any_external_force_ = any;
   update_nonlocal();
 }
 
