@@ -48,6 +48,12 @@ void prefetch(const std::vector<T>& a, Index p) {
   if constexpr (sizeof(T) > 8) __builtin_prefetch(first + sizeof(T) - 1);
 }
 
+// The arrays' entries of the particle kAhead positions after position k of `order`.
+template <class... Arrays>
+void prefetch_ahead(const std::vector<Index>& order, Index k, const Arrays&... arrays) {
+  if (k + kAhead < static_cast<Index>(order.size())) (prefetch(arrays, order[k + kAhead]), ...);
+}
+
 double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
 
 }  // namespace
@@ -195,12 +201,7 @@ void Simulation<D>::compute_stencils() {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
     for (Index k = 0; k < na; ++k) {
       const Index p = order[k];
-      if (k + kAhead < na) {
-        const Index q = order[k + kAhead];
-        prefetch(particles_.x0, q);
-        prefetch(particles_.u, q);
-        prefetch(state_.half_width, q);
-      }
+      prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
       const Stencil<D> st =
           make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
       if (!inside_grid(st)) bad = std::min(bad, p);
@@ -248,18 +249,9 @@ void Simulation<D>::scatter(Scatter what) {
   const IVec<D> stride = grid_.stride;
   const bool external = any_external_force_;
   const std::vector<Index>& order = schedule_.order();
-  const Index na = static_cast<Index>(order.size());
   schedule_.for_each([&](Index k, Index p) {
-    if (k + kAhead < na) {
-      const Index q = order[k + kAhead];
-      prefetch(state_.mass, q);
-      prefetch(particles_.v, q);
-      if (what.forces) {
-        prefetch(particles_.volume, q);
-        prefetch(state_.kirchhoff, q);
-        prefetch(ext_force_, q);
-      }
-    }
+    prefetch_ahead(order, k, state_.mass, particles_.v);
+    if (what.forces) prefetch_ahead(order, k, particles_.volume, state_.kirchhoff, ext_force_);
     const double m = state_.mass[p];
     const Vec<D> mv = m * particles_.v[p];
     const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
@@ -323,7 +315,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 #pragma omp parallel for schedule(static) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
-    if (k + kAhead < na) prefetch(state_.F, order[k + kAhead]);
+    prefetch_ahead(order, k, state_.F);
     Mat<D> L = Mat<D>::Zero();
     for_each_grid_node<D>(stencil_[k], K_, stride,
                           [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
@@ -347,7 +339,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
     for (Index k = 0; k < na; ++k) {
       const Index p = order[k];
-      if (k + kAhead < na) prefetch(state_.failed, order[k + kAhead]);
+      prefetch_ahead(order, k, state_.failed);
       if (state_.failed[p]) continue;
       try {
         polar_[k] = polar_log<D>(state_.F[p]);
@@ -362,17 +354,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
-    if (k + kAhead < na) {
-      const Index q = order[k + kAhead];
-      prefetch(state_.history, q);
-      prefetch(state_.eq_plastic_hardening, q);
-      prefetch(state_.kirchhoff, q);
-      prefetch(state_.stress, q);
-      prefetch(state_.J, q);
-      prefetch(state_.out_of_plane_strain, q);
-      prefetch(state_.energy, q);
-      prefetch(state_.dissipation, q);
-    }
+    prefetch_ahead(order, k, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.stress, state_.J,
+                   state_.out_of_plane_strain, state_.energy, state_.dissipation);
     if (state_.failed[p]) continue;  // a failed particle carries no stress
     PointHistory& hist = state_.history[p];
     const double alpha_before = hist.eq_plastic_strain;
@@ -589,11 +572,8 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   const double flip = settings_.flip;
   std::atomic<bool> finite{true};
   auto move_particle = [&](Index k, Index p) {
-    if (k + kAhead < na) {
-      prefetch(particles_.v, order[k + kAhead]);
-      prefetch(particles_.u, order[k + kAhead]);
-      if (remap) prefetch(state_.mass, order[k + kAhead]);
-    }
+    prefetch_ahead(order, k, particles_.v, particles_.u);
+    if (remap) prefetch_ahead(order, k, state_.mass);
     Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
     for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
       v_pic += w * grid_.velocity_new[node];
