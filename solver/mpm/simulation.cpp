@@ -38,7 +38,7 @@ class PhaseClock {
 // consecutive particles are runs of a lattice row (8 in 2D at two sites per cell),
 // too short for the hardware prefetcher, and each loop body is long enough that the
 // next particle's loads are not issued early. Each loop asks for the arrays of the
-// particle kAhead positions on (measured on the 200² plate: see solver/mpm/README.md).
+// particle kAhead positions on.
 constexpr Index kAhead = 8;
 
 template <class T>
