@@ -26,7 +26,7 @@ J2Constants::J2Constants(const core::Elastic& m, const core::J2Hardening& j2)
 J2Result j2_return_3d(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
   const double G = k.G, H = k.H;
   const Mat<3> eps_e_trial = eps - h.plastic_strain;
-  const Mat<3> T_trial = k.lame * eps_e_trial.trace() * Mat<3>::Identity() + 2.0 * G * eps_e_trial;  // hooke_3d
+  const Mat<3> T_trial = hooke_3d(k.lame, G, eps_e_trial);
   const Mat<3> s = T_trial - (T_trial.trace() / 3.0) * Mat<3>::Identity();
   const double s_norm = s.norm();
   const double q = kSqrt3over2 * s_norm;  // von Mises equivalent of the trial stress
@@ -52,14 +52,11 @@ J2Result j2_return_3d(const J2Constants& k, const Mat<3>& eps, PointHistory& h, 
 
 J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset) {
   const double G = k.G, H = k.H, E = k.E, nu = k.nu;
-  // The elastic trial on the in-plane block (hooke_plane_stress's arithmetic; the
-  // strains are symmetric, so ε_e,10 = ε_e,01).
-  const double c = k.plane_stress_modulus;
+  // The elastic trial on the in-plane block (the strains are symmetric: ε_e,10 = ε_e,01).
   const double e00 = eps(0, 0) - h.plastic_strain(0, 0), e11 = eps(1, 1) - h.plastic_strain(1, 1);
-  const double e01 = eps(0, 1) - h.plastic_strain(0, 1), tr = e00 + e11;
-  const double t00 = c * ((1.0 - nu) * e00 + nu * tr), t11 = c * ((1.0 - nu) * e11 + nu * tr);
-  const double t01 = c * (1.0 - nu) * e01;
-  const double e33_el = k.thickness_strain * tr;
+  const double e01 = eps(0, 1) - h.plastic_strain(0, 1);
+  const auto [t00, t11, t01, e33_el] =
+      hooke_plane_stress(k.plane_stress_modulus, nu, k.thickness_strain, e00, e11, e01);
   // Spectral coordinates of the in-plane stress in the common eigenbasis of the
   // plane-stress elasticity and the projection P (eigenvalues 1/3, 1, 2).
   const double a1 = (t00 + t11) / std::sqrt(2.0);

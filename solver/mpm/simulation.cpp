@@ -235,7 +235,7 @@ Vec<D> Simulation<D>::external_force(Index p, double t) const {
 // P2G: whatever `what` asks of m_I, p_I and f_I, in one pass over the particles in the
 // schedule's order (each node sums its particles in the same order on any thread count).
 template <int D>
-void Simulation<D>::scatter(Scatter what) {
+void Simulation<D>::clear_grid(Scatter what) {
   const Index N = grid_.size();
 #pragma omp parallel for schedule(static) if (N >= kParallelMin)
   for (Index i = 0; i < N; ++i) {
@@ -246,6 +246,17 @@ void Simulation<D>::scatter(Scatter what) {
       grid_.force_external[i].setZero();
     }
   }
+}
+
+template <int D>
+void Simulation<D>::fold_grid(Scatter what) {
+  if (what.momentum) boundary_.fold(what.mass ? &grid_.mass : nullptr, &grid_.momentum);
+  if (what.forces) boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
+}
+
+template <int D>
+void Simulation<D>::scatter(Scatter what) {
+  clear_grid(what);
   const IVec<D> stride = grid_.stride;
   const bool external = any_external_force_;
   const std::vector<Index>& order = schedule_.order();
@@ -265,8 +276,7 @@ void Simulation<D>::scatter(Scatter what) {
       }
     });
   });
-  if (what.momentum) boundary_.fold(what.mass ? &grid_.mass : nullptr, &grid_.momentum);
-  if (what.forces) boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
+  fold_grid(what);
 }
 
 template <int D>
@@ -589,11 +599,9 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
     }
   };
   if (remap) {
-    const Index N = grid_.size();
-#pragma omp parallel for schedule(static) if (N >= kParallelMin)
-    for (Index i = 0; i < N; ++i) grid_.momentum[i].setZero();
+    clear_grid({.momentum = true});
     schedule_.for_each(move_particle);
-    boundary_.fold(nullptr, &grid_.momentum);
+    fold_grid({.momentum = true});
   } else {
 #pragma omp parallel for schedule(static) if (na >= kParallelMin)
     for (Index k = 0; k < na; ++k) move_particle(k, order[k]);

@@ -131,6 +131,8 @@ class Simulation {
     bool mass = false, momentum = false, forces = false;
   };
   void scatter(Scatter what);
+  void clear_grid(Scatter what);  // zero what a scatter sums
+  void fold_grid(Scatter what);   // fold it across symmetry planes afterwards
   void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_nonlocal();
