@@ -12,6 +12,7 @@
 #include "solver/mpm/deterministic_sum.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/nonlocal.hpp"
+#include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/stress_measures.hpp"
 
@@ -196,17 +197,11 @@ void Simulation<D>::compute_stencils() {
   }
   if (bad == std::numeric_limits<Index>::max()) {
     schedule_.build(grid_, active_, cell);
-    const std::vector<Index>& order = schedule_.order();
-    stencil_.resize(order.size());
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
-    for (Index k = 0; k < na; ++k) {
-      const Index p = order[k];
-      prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
-      const Stencil<D> st =
-          make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
-      if (!inside_grid(st)) bad = std::min(bad, p);
-      stencil_[k] = st;
-    }
+    stencil_.resize(schedule_.order().size());
+    if (settings_.shape == ShapeFunction::gimp)
+      compute_gimp_stencils(bad);
+    else
+      compute_other_stencils(bad);
   }
   if (bad != std::numeric_limits<Index>::max()) {
     std::string where;
@@ -214,6 +209,54 @@ void Simulation<D>::compute_stencils() {
     for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", x[a]);
     throw RunError(
         fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
+  }
+}
+
+// GIMP stencils eight particles at a time (gimp_lanes.hpp); a last group of fewer
+// repeats its last particle in the unused lanes.
+template <int D>
+void Simulation<D>::compute_gimp_stencils(Index& bad) {
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
+  const Index groups = (na + kGimpLanes - 1) / kGimpLanes;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+  for (Index gi = 0; gi < groups; ++gi) {
+    const Index k0 = gi * kGimpLanes;
+    prefetch_ahead(order, std::min(k0 + kGimpLanes - 1, na - 1), particles_.x0, particles_.u, state_.half_width);
+    std::array<Vec<D>, kGimpLanes> x_rel, lp;
+    for (int l = 0; l < kGimpLanes; ++l) {
+      const Index p = order[std::min(k0 + l, na - 1)];
+      x_rel[l] = particles_.position(p) - grid_.node0;
+      lp[l] = state_.half_width[p];
+    }
+    for (int a = 0; a < D; ++a) {
+      double xa[kGimpLanes], la[kGimpLanes];
+      for (int l = 0; l < kGimpLanes; ++l) xa[l] = x_rel[l][a], la[l] = lp[l][a];
+      GimpLanes lanes;
+      gimp_lanes(xa, la, grid_.h, lanes);
+      for (int l = 0; l < kGimpLanes && k0 + l < na; ++l) {
+        Stencil<D>& st = stencil_[k0 + l];
+        st.first[a] = lanes.first[l];
+        for (int n = 0; n < 3; ++n) st.w[a][n] = lanes.w[n][l], st.dw[a][n] = lanes.dw[n][l];
+      }
+    }
+    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)
+      if (!inside_grid(stencil_[k])) bad = std::min(bad, order[k]);
+  }
+}
+
+template <int D>
+void Simulation<D>::compute_other_stencils(Index& bad) {
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    const Index p = order[k];
+    prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
+    const Stencil<D> st =
+        make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
+    if (!inside_grid(st)) bad = std::min(bad, p);
+    stencil_[k] = st;
   }
 }
 

@@ -137,6 +137,8 @@ class Simulation {
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_nonlocal();
   Vec<D> external_force(Index p, double t) const;
+  void compute_gimp_stencils(Index& bad);   // stencil_ in schedule order; bad = lowest particle
+  void compute_other_stencils(Index& bad);  // outside the grid (left unchanged if none)
   bool inside_grid(const Stencil<D>& st) const;  // every node of the stencil is a grid node
 
   Settings<D> settings_;
