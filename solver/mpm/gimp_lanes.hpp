@@ -10,6 +10,8 @@
 // functions bit for bit.
 #include <vector>
 
+#include "solver/mpm/lane_variant.hpp"
+
 namespace pdmpm::mpm {
 
 inline constexpr int kGimpLanes = 8;
@@ -22,12 +24,9 @@ struct GimpLanes {
 // x_rel: particle coordinates relative to the grid origin; lp: GIMP half-widths; h: cell size.
 void gimp_lanes(const double* x_rel, const double* lp, double h, GimpLanes& out);
 
-// Every instruction set's version this machine can run (the tests compare them all).
+// Every instruction set's version this machine can run (the tests compare them
+// all); gimp_lanes calls the widest, or the one PDMPM_SIMD names.
 using GimpLanesFunction = void (*)(const double*, const double*, double, GimpLanes&);
-struct GimpLanesVariant {
-  const char* name;  // "sse2", "avx2", "avx512" (PDMPM_SIMD picks one, as for the PD kernels)
-  GimpLanesFunction function;
-};
-std::vector<GimpLanesVariant> gimp_lanes_variants();
+std::vector<LaneVariant<GimpLanesFunction>> gimp_lanes_variants();
 
 }  // namespace pdmpm::mpm

@@ -14,6 +14,7 @@
 #include "solver/mpm/nonlocal.hpp"
 #include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/parallel.hpp"
+#include "solver/mpm/polar_lanes.hpp"
 #include "solver/mpm/stress_measures.hpp"
 
 namespace pdmpm::mpm {
@@ -389,17 +390,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   const bool log_strain = constitutive_.log_strain();
   if (log_strain) {
     polar_.resize(order.size());
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
-    for (Index k = 0; k < na; ++k) {
-      const Index p = order[k];
-      prefetch_ahead(order, k, state_.failed);
-      if (state_.failed[p]) continue;
-      try {
-        polar_[k] = polar_log<D>(state_.F[p]);
-      } catch (const RunError&) {
-        bad = std::min(bad, p);
-      }
-    }
+    polar_decompositions(bad);
     throw_if_bad();
   }
 
@@ -446,6 +437,56 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
     }
   }
   throw_if_bad();
+}
+
+// polar_ of the active particles in schedule order; bad = the lowest inverted
+// particle (unchanged if none). In 2D eight particles at a time (polar_lanes.hpp);
+// the lanes it flags, and failed particles' F (which may be anything), go through
+// polar_log<2> itself.
+template <int D>
+void Simulation<D>::polar_decompositions(Index& bad) {
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
+  // false if particle order[k] has inverted (bad is reduced in the loops, not here).
+  auto decompose = [&](Index k) {
+    const Index p = order[k];
+    if (state_.failed[p]) return true;
+    try {
+      polar_[k] = polar_log<D>(state_.F[p]);
+    } catch (const RunError&) {
+      return false;
+    }
+    return true;
+  };
+  if constexpr (D != 2) {
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+    for (Index k = 0; k < na; ++k) {
+      prefetch_ahead(order, k, state_.failed);
+      if (!decompose(k)) bad = std::min(bad, order[k]);
+    }
+  } else {
+    const Index groups = (na + kPolarLanes - 1) / kPolarLanes;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+    for (Index gi = 0; gi < groups; ++gi) {
+      const Index k0 = gi * kPolarLanes, n = std::min<Index>(kPolarLanes, na - k0);
+      prefetch_ahead(order, k0 + n - 1, state_.F);
+      PolarLanes lanes;
+      for (int l = 0; l < kPolarLanes; ++l) {
+        const Mat<D>& F = state_.F[order[k0 + std::min<Index>(l, n - 1)]];
+        lanes.f00[l] = F(0, 0), lanes.f10[l] = F(1, 0), lanes.f01[l] = F(0, 1), lanes.f11[l] = F(1, 1);
+      }
+      const unsigned scalar = polar_log_lanes(lanes);
+      for (int l = 0; l < n; ++l) {
+        const Index k = k0 + l;
+        if (scalar >> l & 1u) {
+          if (!decompose(k)) bad = std::min(bad, order[k]);
+        } else if (!state_.failed[order[k]]) {
+          polar_[k].R << lanes.c[l], -lanes.s[l], lanes.s[l], lanes.c[l];
+          polar_[k].log_U << lanes.l00[l], lanes.l01[l], lanes.l01[l], lanes.l11[l];
+        }
+      }
+    }
+  }
 }
 
 template <int D>

@@ -139,6 +139,7 @@ class Simulation {
   Vec<D> external_force(Index p, double t) const;
   void compute_gimp_stencils(Index& bad);   // stencil_ in schedule order; bad = lowest particle
   void compute_other_stencils(Index& bad);  // outside the grid (left unchanged if none)
+  void polar_decompositions(Index& bad);
   bool inside_grid(const Stencil<D>& st) const;  // every node of the stencil is a grid node
 
   Settings<D> settings_;

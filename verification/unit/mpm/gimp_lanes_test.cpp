@@ -21,7 +21,7 @@ int differing_lanes(GimpLanesFunction gimp, const std::vector<double>& x, const 
 // the number of lanes that differ.
 int differing_lanes(const std::vector<double>& x, const std::vector<double>& lp, double h) {
   int bad = 0;
-  for (const GimpLanesVariant& variant : gimp_lanes_variants()) bad += differing_lanes(variant.function, x, lp, h);
+  for (const auto& variant : gimp_lanes_variants()) bad += differing_lanes(variant.function, x, lp, h);
   return bad;
 }
 

@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include <cmath>
+#include <string>
 
 #include "solver/core/error.hpp"
 #include "verification/gates/mpm_gate_util.hpp"
@@ -68,6 +69,37 @@ TEST(MpmSimulation, BitIdenticalForAnyThreadCount) {
     }
     EXPECT_TRUE(plastic) << "the test should exercise the plastic return";
   }
+}
+
+// A step that inverts particles (det F ≤ 0) stops the run with the same message —
+// the lowest such particle — for any thread count (the 2D polar decompositions run
+// eight particles at a time and hand inverted ones to the scalar code).
+TEST(MpmSimulation, InvertedParticleStopsTheRunNamingIt) {
+  std::vector<std::string> messages;
+  for (const int threads : {1, 2}) {
+    const int saved = omp_get_max_threads();
+    omp_set_num_threads(threads);
+    auto particles = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(0.1, 0.05), 1e-3, 2e-3);
+    // Squeezed along x at a rate k right of x = 0.07: the Cayley increment
+    // (1 − k Δt/2)/(1 + k Δt/2) < 0 where k Δt > 2, so not at particle 0.
+    for (Index p = 0; p < particles.n_real; ++p)
+      particles.v[p] = Vec<2>(particles.x0[p][0] > 0.07 ? -1e5 * (particles.x0[p][0] - 0.07) : 0.0, 0.0);
+    Settings<2> s;
+    s.setting = core::Setting::plane_stress;
+    s.material = {MaterialModel::j2, {200e9, 0.3, 7800}, {300e6, 2e9}};
+    Simulation<2> sim(s, particles);
+    try {
+      sim.step(1e-4);
+      ADD_FAILURE() << "no error on " << threads << " threads";
+    } catch (const RunError& e) {
+      messages.push_back(e.what());
+      EXPECT_NE(messages.back().find("inverted"), std::string::npos) << e.what();
+      EXPECT_EQ(messages.back().find("particle 0 "), std::string::npos) << e.what();
+    }
+    omp_set_num_threads(saved);
+  }
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_EQ(messages[0], messages[1]);
 }
 
 // Half bar [0, L] with a symmetry plane at 0 vs the full bar [−L, L] with an odd

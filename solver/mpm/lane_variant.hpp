@@ -1,0 +1,27 @@
+#pragma once
+// The MPM's lane functions (lanes.hpp) come in one version per instruction set;
+// the widest the machine runs is used, or the one PDMPM_SIMD names (as for the PD
+// bond kernels). The tests compare every version with the scalar code.
+#include <cstdlib>
+#include <cstring>
+#include <vector>
+
+namespace pdmpm::mpm {
+
+// One version of a lane function per instruction set the machine runs.
+template <class Function>
+struct LaneVariant {
+  const char* name;  // "sse2", "avx2", "avx512"
+  Function function;
+};
+
+// The widest version, or the one PDMPM_SIMD names (as for the PD bond kernels).
+template <class Function>
+Function choose_lane_variant(const std::vector<LaneVariant<Function>>& variants) {
+  if (const char* want = std::getenv("PDMPM_SIMD"))
+    for (const auto& v : variants)
+      if (std::strcmp(want, v.name) == 0) return v.function;
+  return variants.back().function;
+}
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,37 @@
+#pragma once
+// Lanes of doubles at an instruction set's native vector width (2 SSE2, 4 AVX2,
+// 8 AVX-512) for the MPM's per-particle arithmetic done several particles at a
+// time. Wider generic vectors than the hardware's make GCC 12 compare lane by lane.
+// Every operation is the IEEE one per lane and the files using these compile
+// without FMA contraction, so each version gives the scalar code's bits.
+// Included only by the lane files (gimp_lanes.cpp, polar_lanes.cpp).
+#include <cmath>
+#include <cstring>
+
+namespace pdmpm::mpm {
+
+template <int W>
+struct Lanes {
+  typedef double d __attribute__((vector_size(8 * W)));
+  typedef long long m __attribute__((vector_size(8 * W)));  // masks: all ones or zero per lane
+  // a where the mask is set, else b: bitwise.
+  __attribute__((always_inline)) static d select(m mask, d a, d b) {
+    return reinterpret_cast<d>((reinterpret_cast<m>(a) & mask) | (reinterpret_cast<m>(b) & ~mask));
+  }
+  __attribute__((always_inline)) static d load(const double* p) {
+    d v;
+    std::memcpy(&v, p, sizeof v);
+    return v;
+  }
+  // Per lane by the library's correctly rounded square root (a vector square root
+  // would need the instruction set's intrinsics in this shared header).
+  __attribute__((always_inline)) static d sqrt(d x) {
+    double v[W];
+    std::memcpy(v, &x, sizeof x);
+    for (double& e : v) e = std::sqrt(e);
+    return load(v);
+  }
+  __attribute__((always_inline)) static void store(double* p, d v) { std::memcpy(p, &v, sizeof v); }
+};
+
+}  // namespace pdmpm::mpm

@@ -1,0 +1,75 @@
+#include "solver/mpm/polar_lanes.hpp"
+
+#include <cmath>
+
+#include "solver/mpm/lanes.hpp"
+
+namespace pdmpm::mpm {
+
+namespace {
+
+template <int W>
+__attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in) {
+  using V = Lanes<W>;
+  using d = typename V::d;
+  using m = typename V::m;
+  unsigned scalar = 0;
+  for (int c0 = 0; c0 < kPolarLanes; c0 += W) {
+    const d f00 = V::load(in.f00 + c0), f10 = V::load(in.f10 + c0), f01 = V::load(in.f01 + c0),
+            f11 = V::load(in.f11 + c0);
+    const d det = f00 * f11 - f10 * f01;
+    // R = [c −s; s c] with (c, s) ∥ (F₀₀ + F₁₁, F₁₀ − F₀₁); U = RᵀF symmetrised.
+    const d a = f00 + f11, b = f10 - f01;
+    const d inv = 1.0 / V::sqrt(a * a + b * b);
+    const d c = a * inv, s = b * inv;
+    const d u00 = c * f00 + s * f10, u11 = -s * f01 + c * f11;
+    const d u01 = c * f01 + s * f11, u10 = -s * f00 + c * f10;
+    const d U00 = 0.5 * (u00 + u00), U01 = 0.5 * (u01 + u10), U10 = 0.5 * (u10 + u01), U11 = 0.5 * (u11 + u11);
+    // ln U = ½ ln(det U) I + q (U − m I), q = atanh(r/m)/r, by the series of log_spd2.
+    const d mean = 0.5 * (U00 + U11), hd = 0.5 * (U00 - U11), off = 0.5 * (U01 + U10);
+    const d r = V::sqrt(hd * hd + off * off);
+    const d x = r / mean, y = x * x;
+    const d series =
+        1.0 + y * (1.0 / 3 + y * (1.0 / 5 + y * (1.0 / 7 + y * (1.0 / 9 + y * (1.0 / 11 + y * (1.0 / 13 + y / 15))))));
+    const d q = series / mean;
+    const m fine = (det > 0.0) & (x < 0.1);
+    double half_log_det[W];
+    for (int i = 0; i < W; ++i) {
+      if (fine[i]) {
+        half_log_det[i] = 0.5 * std::log(det[i]);
+      } else {
+        half_log_det[i] = 0.0;
+        scalar |= 1u << (c0 + i);
+      }
+    }
+    const d hl = V::load(half_log_det);
+    V::store(in.c + c0, c);
+    V::store(in.s + c0, s);
+    V::store(in.l00 + c0, hl + q * hd);
+    V::store(in.l11 + c0, hl - q * hd);
+    V::store(in.l01 + c0, q * off);
+  }
+  return scalar;
+}
+
+unsigned polar_log_lanes_sse2(PolarLanes& in) { return polar_log_lanes_by<2>(in); }
+__attribute__((target("avx2"))) unsigned polar_log_lanes_avx2(PolarLanes& in) { return polar_log_lanes_by<4>(in); }
+__attribute__((target("avx512f"))) unsigned polar_log_lanes_avx512(PolarLanes& in) {
+  return polar_log_lanes_by<8>(in);
+}
+
+}  // namespace
+
+std::vector<LaneVariant<PolarLanesFunction>> polar_lanes_variants() {
+  std::vector<LaneVariant<PolarLanesFunction>> v{{"sse2", polar_log_lanes_sse2}};
+  if (__builtin_cpu_supports("avx2")) v.push_back({"avx2", polar_log_lanes_avx2});
+  if (__builtin_cpu_supports("avx512f")) v.push_back({"avx512", polar_log_lanes_avx512});
+  return v;
+}
+
+unsigned polar_log_lanes(PolarLanes& lanes) {
+  static const PolarLanesFunction chosen = choose_lane_variant(polar_lanes_variants());
+  return chosen(lanes);
+}
+
+}  // namespace pdmpm::mpm
