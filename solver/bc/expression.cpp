@@ -98,7 +98,10 @@ class ExpressionParser {
     while (pos_ < s_.size() && (std::isalnum(static_cast<unsigned char>(s_[pos_])) || s_[pos_] == '_')) ++pos_;
     const std::string id = s_.substr(start, pos_ - start);
     if (accept('(')) return call(id, start);
-    if (id == "t") return add(Node{Op::var_t});
+    if (id == "t") {
+      out_->uses_time_ = true;
+      return add(Node{Op::var_t});
+    }
     if (id == "x" || id == "y" || id == "z") {
       out_->uses_position_ = true;
       return add(Node{id == "x" ? Op::var_x : id == "y" ? Op::var_y : Op::var_z});

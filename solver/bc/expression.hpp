@@ -29,6 +29,7 @@ class Expression {
   double operator()(const ExpressionVariables& v) const { return nodes_.empty() ? 0.0 : eval(root_, v); }
   const std::string& text() const { return text_; }
   bool depends_on_position() const { return uses_position_; }
+  bool depends_on_time() const { return uses_time_; }
 
  private:
   enum class Op : unsigned char { constant, var_t, var_x, var_y, var_z, add, sub, mul, div, pow, neg, call1, call2 };
@@ -46,6 +47,7 @@ class Expression {
   int root_ = -1;
   std::string text_;
   bool uses_position_ = false;
+  bool uses_time_ = false;
 };
 
 }  // namespace pdmpm::bc

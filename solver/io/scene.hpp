@@ -44,6 +44,13 @@ struct BoundarySpec {
   std::map<std::string, double> parameters;
 };
 
+// [[initial]]: velocity and/or displacement at t = 0 of the particles in a region.
+struct InitialSpec {
+  std::string key;
+  std::vector<ShapeSpec> region;                    // empty: the whole body
+  std::vector<std::string> velocity, displacement;  // per component ("free" leaves it alone); empty: not given
+};
+
 struct SymmetrySpec {
   std::string key;
   int axis = 0;
@@ -186,6 +193,7 @@ struct Scene {
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
+  std::vector<InitialSpec> initials;  // in file order: a later table overwrites an earlier one
   std::vector<SymmetrySpec> symmetries;
   std::vector<PrecrackSpec> precracks;
   std::vector<std::string> body_force;  // force density expressions, empty = none

@@ -290,6 +290,45 @@ void read_boundaries(const TomlReader& root, Scene& s) {
   }
 }
 
+// An [[initial]] value: one number or expression of x, y, z per component
+// ("free" leaves it alone); empty when the key is absent.
+std::vector<std::string> read_initial_values(const TomlReader& r, const std::string& key, int dim) {
+  const auto value = r.optional_expressions(key, static_cast<std::size_t>(dim));
+  if (!value) return {};
+  if (value->size() != static_cast<std::size_t>(dim))
+    r.fail(key, "must be a list of " + std::to_string(dim) + " components");
+  for (const auto& v : *value) {
+    check_expression(r, key, v);
+    if (v != "free" && bc::Expression::parse(v).depends_on_time())
+      r.fail(key, "\"" + v + "\" uses t: initial values are at t = 0 (functions of x, y, z)");
+  }
+  return *value;
+}
+
+void read_initials(const TomlReader& root, Scene& s) {
+  for (const auto& t : root.tables("initial")) {
+    InitialSpec spec;
+    spec.key = t.path();
+    if (t.has("region"))  // no region: the whole body
+      for (const auto& shape : t.table_or_tables("region")) spec.region.push_back(read_shape(shape, s.dimension));
+    spec.velocity = read_initial_values(t, "velocity", s.dimension);
+    spec.displacement = read_initial_values(t, "displacement", s.dimension);
+    t.finish();
+    if (spec.velocity.empty() && spec.displacement.empty())
+      t.fail("", "needs velocity, displacement or both (one expression per component)");
+    auto sets = [](const std::vector<std::string>& v) {
+      return std::any_of(v.begin(), v.end(), [](const std::string& e) { return e != "free"; });
+    };
+    if (!sets(spec.velocity) && !sets(spec.displacement))
+      t.fail(spec.velocity.empty() ? "displacement" : "velocity",
+             "every component is \"free\": the table sets nothing");
+    // ADR relaxes to rest with its own fictitious velocities: a given one would be ignored.
+    if (!spec.velocity.empty() && s.time.integrator == Integrator::adr)
+      t.fail("velocity", "not used by integrator = \"adr\" (quasi-static); give a displacement only");
+    s.initials.push_back(std::move(spec));
+  }
+}
+
 void read_geometry(const TomlReader& root, Scene& s) {
   for (const auto& t : root.tables("shape")) s.shapes.push_back(read_shape(t, s.dimension));
   if (s.shapes.empty()) root.fail("shape", "missing: at least one [[shape]] is required");
@@ -483,6 +522,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_geometry(root, s);
   read_time(root.table("time"), s);
   read_boundaries(root, s);
+  read_initials(root, s);
   read_loads(root, s);
   read_crack(root, s);
   if (auto o = root.optional_table("output"))

@@ -21,6 +21,9 @@ HybridSetup<D>::HybridSetup(const io::Scene& scene) : pd(build_pd<D>(checked(sce
   mpm_simulation =
       std::make_unique<mpm::Simulation<D>>(std::move(grid.settings), pd.system.particles, scene.file, "mpm");
   check_boundary_nodes<D>(scene, grid_bc_source, *mpm_simulation);
+  // build_pd moved and sped up the particles; the grid's state needs the strain too
+  // (every real particle's, since any may be carried by the grid).
+  set_initial_deformation<D>(pd.initial, *mpm_simulation);
   hybrid_simulation = std::make_unique<hybrid::Simulation<D>>(*pd_simulation, *mpm_simulation, *scene.hybrid);
 }
 

@@ -24,6 +24,7 @@ class MpmRun {
         sim_(setup.settings, setup.particles, scene.file, "mpm"),
         rec_(scene, options) {
     check_boundary_nodes<D>(scene_, s_.grid_bc_source, sim_);
+    set_initial_deformation<D>(s_.initial, sim_);
   }
 
   RunResult run();

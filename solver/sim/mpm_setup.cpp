@@ -9,6 +9,7 @@
 #include "solver/core/particle_builder.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/geometry_from_scene.hpp"
+#include "solver/sim/initial_from_scene.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -154,6 +155,10 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
   MpmSetup<D> out;
   out.particles = fill_body<D>(s);
   for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
+  // Before the simulation exists: its grid covers the displaced body and its first
+  // stable step sees the initial velocities.
+  out.initial = make_initial_conditions<D>(s, out.particles);
+  bc::apply_initial_conditions<D>(out.initial, out.particles);
   auto grid = translate_mpm<D>(s);
   out.settings = std::move(grid.settings);
   out.grid_bc_source = std::move(grid.grid_bc_source);
@@ -174,12 +179,21 @@ void check_boundary_nodes(const io::Scene& s, const std::vector<int>& grid_bc_so
   }
 }
 
+template <int D>
+void set_initial_deformation(const std::vector<bc::InitialCondition<D>>& initial, mpm::Simulation<D>& sim) {
+  for (const auto& [i, grad] : bc::initial_displacement_gradients<D>(initial, sim.particles()))
+    sim.set_deformation_gradient(i, Mat<D>::Identity() + grad);
+}
+
 template MpmGridSettings<1> translate_mpm<1>(const io::Scene&);
 template MpmGridSettings<2> translate_mpm<2>(const io::Scene&);
 template MpmGridSettings<3> translate_mpm<3>(const io::Scene&);
 template void check_boundary_nodes<1>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<1>&);
 template void check_boundary_nodes<2>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<2>&);
 template void check_boundary_nodes<3>(const io::Scene&, const std::vector<int>&, const mpm::Simulation<3>&);
+template void set_initial_deformation<1>(const std::vector<bc::InitialCondition<1>>&, mpm::Simulation<1>&);
+template void set_initial_deformation<2>(const std::vector<bc::InitialCondition<2>>&, mpm::Simulation<2>&);
+template void set_initial_deformation<3>(const std::vector<bc::InitialCondition<3>>&, mpm::Simulation<3>&);
 template MpmSetup<1> build_mpm<1>(const io::Scene&);
 template MpmSetup<2> build_mpm<2>(const io::Scene&);
 template MpmSetup<3> build_mpm<3>(const io::Scene&);

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "solver/bc/initial_condition.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/mpm/settings.hpp"
@@ -35,6 +36,13 @@ template <int D>
 void check_boundary_nodes(const io::Scene& scene, const std::vector<int>& grid_bc_source,
                           const mpm::Simulation<D>& sim);
 
+// An initial displacement strains the material: F = I + ∇u at each particle it
+// reaches (∇u by central differences of the expressions,
+// bc::initial_displacement_gradients) and the stress of that F. Call once the
+// simulation exists, before its first step.
+template <int D>
+void set_initial_deformation(const std::vector<bc::InitialCondition<D>>& initial, mpm::Simulation<D>& sim);
+
 template <int D>
 struct MpmSetup {
   core::Particles<D> particles;
@@ -44,6 +52,9 @@ struct MpmSetup {
   // scene boundary.
   std::vector<int> grid_bc_source;
   std::vector<Probe> probes;
+  // [[initial]], already applied to u and v; set_initial_deformation gives the
+  // simulation the matching deformation gradients.
+  std::vector<bc::InitialCondition<D>> initial;
 };
 
 // Throws InputError for what only the particles reveal (empty body, a symmetry

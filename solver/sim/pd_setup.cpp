@@ -10,6 +10,7 @@
 #include "solver/pd/constants.hpp"
 #include "solver/pd/precrack.hpp"
 #include "solver/sim/geometry_from_scene.hpp"
+#include "solver/sim/initial_from_scene.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -117,6 +118,9 @@ PdSetup<D> build_pd(const io::Scene& s) {
     }
   }
   out.boundaries.finalise(sys.particles.n_real);
+  // Before the run's first force evaluation, so a displacement is strained from t = 0.
+  out.initial = make_initial_conditions<D>(s, sys.particles);
+  bc::apply_initial_conditions<D>(out.initial, sys.particles);
 
   if (!s.body_force.empty()) {
     out.has_body_force = true;

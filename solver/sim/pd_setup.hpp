@@ -1,15 +1,16 @@
 #pragma once
 // Everything a PD run needs, built from a validated scene: particles (with
 // symmetry ghosts), families, pre-cracks, the force model, boundary conditions,
-// loads, contact and probes. All user-facing checks that need the particles
-// (empty body, empty regions, probes outside the body) happen here, before any
-// output is written.
+// initial conditions (applied to u and v), loads, contact and probes. All
+// user-facing checks that need the particles (empty body, empty regions, probes
+// outside the body) happen here, before any output is written.
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "solver/bc/boundary.hpp"
+#include "solver/bc/initial_condition.hpp"
 #include "solver/bc/indenter.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/pd/contact.hpp"
@@ -25,6 +26,7 @@ struct PdSetup {
   pd::System<D> system;
   std::unique_ptr<pd::Model<D>> model;
   bc::Boundaries<D> boundaries;
+  std::vector<bc::InitialCondition<D>> initial;  // [[initial]], already applied to the particles
   std::array<bc::Expression, D> body_force;
   bool has_body_force = false;
   std::optional<bc::Indenter<D>> indenter;

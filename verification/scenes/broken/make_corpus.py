@@ -183,6 +183,17 @@ CASES = {
     "hybrid_symmetry": ("symmetry[0] | not supported in a hybrid scene", HYBRID_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
     "hybrid_wrong_constitutive": ("material.constitutive | must be \"j2\" for the hybrid", hybrid("density = 2500", 'density = 2500\nconstitutive = "linear_elastic"')),
     "hybrid_displacement_boundary": ("boundary[0].kind | the hybrid constrains grid velocities", hybrid('kind = "fixed"', 'kind = "displacement"\nvalue = ["0", "0"]')),
+    "initial_unknown_key": ("initial[0].velocty | unknown key", BASE + '\n[[initial]]\nvelocty = [1.0, 0.0]\n'),
+    "initial_wrong_count": ("initial[0].velocity | exactly 2 components", BASE + '\n[[initial]]\nvelocity = [1.0, 0.0, 0.0]\n'),
+    "initial_bad_expression": ("initial[0].displacement | at character", BASE + '\n[[initial]]\ndisplacement = ["1e-6 * sin(x", 0]\n'),
+    "initial_uses_time": ("initial[0].velocity | initial values are at t = 0", BASE + '\n[[initial]]\nvelocity = ["10 * t", 0]\n'),
+    "initial_without_values": ("initial[0] | needs velocity, displacement or both", BASE + '\n[[initial]]\nregion = { type = "box", min = [0.0, 0.0], max = [0.01, 0.01] }\n'),
+    "initial_all_free": ("initial[0].displacement | the table sets nothing", BASE + '\n[[initial]]\ndisplacement = ["free", "free"]\n'),
+    "initial_unknown_region_type": ("initial[0].region.type | must be one of box", BASE + '\n[[initial]]\nregion = { type = "hexagon", center = [0.01, 0.005] }\nvelocity = [1.0, 0.0]\n'),
+    "initial_empty_region": ("initial[0].region | selects no particle", BASE + '\n[[initial]]\nregion = { type = "disk", center = [0.5, 0.5], radius = 0.01 }\nvelocity = [1.0, 0.0]\n'),
+    "initial_velocity_adr": ("initial[0].velocity | not used by integrator = \"adr\"", replace("end_time = 1e-6", 'integrator = "adr"') + '\n[[initial]]\nvelocity = [1.0, 0.0]\n'),
+    "mpm_initial_empty_region": ("initial[0].region | selects no particle", MPM_BASE + '\n[[initial]]\nregion = { type = "box", min = [0.5, 0.5], max = [0.6, 0.6] }\ndisplacement = ["1e-6 * x", 0]\n'),
+    "hybrid_initial_empty_region": ("initial[0].region | selects no particle", HYBRID_BASE + '\n[[initial]]\nregion = { type = "box", min = [0.5, 0.5], max = [0.6, 0.6] }\nvelocity = [1.0, 0.0]\n'),
     "hybrid_adr": ("time.integrator | the hybrid steps explicitly", hybrid("end_time = 1e-6", 'end_time = 1e-6\nintegrator = "adr"').replace("end_time = 1e-6\n", "", 1)),
 }
 
