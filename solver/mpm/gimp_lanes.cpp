@@ -10,7 +10,7 @@ namespace {
 
 template <int W>
 __attribute__((always_inline)) inline void gimp_lanes_by(const double* x_rel, const double* lp_in, double h,
-                                                          GimpLanes& out) {
+                                                         GimpLanes& out) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
@@ -48,14 +48,11 @@ __attribute__((always_inline)) inline void gimp_lanes_by(const double* x_rel, co
   }
 }
 
-void gimp_lanes_sse2(const double* x, const double* lp, double h, GimpLanes& out) {
-  gimp_lanes_by<2>(x, lp, h, out);
-}
+void gimp_lanes_sse2(const double* x, const double* lp, double h, GimpLanes& out) { gimp_lanes_by<2>(x, lp, h, out); }
 __attribute__((target("avx2"))) void gimp_lanes_avx2(const double* x, const double* lp, double h, GimpLanes& out) {
   gimp_lanes_by<4>(x, lp, h, out);
 }
-__attribute__((target("avx512f"))) void gimp_lanes_avx512(const double* x, const double* lp, double h,
-                                                          GimpLanes& out) {
+__attribute__((target("avx512f"))) void gimp_lanes_avx512(const double* x, const double* lp, double h, GimpLanes& out) {
   gimp_lanes_by<8>(x, lp, h, out);
 }
 

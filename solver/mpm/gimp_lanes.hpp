@@ -17,8 +17,8 @@ namespace pdmpm::mpm {
 inline constexpr int kGimpLanes = 8;
 
 struct GimpLanes {
-  int first[kGimpLanes];                          // first node of each lane's 3
-  double w[3][kGimpLanes], dw[3][kGimpLanes];     // [node][lane]; dw = ∂S/∂x (1/m)
+  int first[kGimpLanes];                       // first node of each lane's 3
+  double w[3][kGimpLanes], dw[3][kGimpLanes];  // [node][lane]; dw = ∂S/∂x (1/m)
 };
 
 // x_rel: particle coordinates relative to the grid origin; lp: GIMP half-widths; h: cell size.

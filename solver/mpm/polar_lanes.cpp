@@ -54,9 +54,7 @@ __attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in
 
 unsigned polar_log_lanes_sse2(PolarLanes& in) { return polar_log_lanes_by<2>(in); }
 __attribute__((target("avx2"))) unsigned polar_log_lanes_avx2(PolarLanes& in) { return polar_log_lanes_by<4>(in); }
-__attribute__((target("avx512f"))) unsigned polar_log_lanes_avx512(PolarLanes& in) {
-  return polar_log_lanes_by<8>(in);
-}
+__attribute__((target("avx512f"))) unsigned polar_log_lanes_avx512(PolarLanes& in) { return polar_log_lanes_by<8>(in); }
 
 }  // namespace
 

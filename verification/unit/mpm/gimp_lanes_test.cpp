@@ -35,7 +35,7 @@ int differing_lanes(GimpLanesFunction gimp, const std::vector<double>& x, const 
       bool same = s.first == lanes.first[l];
       for (int n = 0; n < 3; ++n)
         same = same && std::memcmp(&s.w[n], &lanes.w[n][l], sizeof(double)) == 0 &&
-               std::memcmp(&s.dw[n], &lanes.dw[n][l], sizeof(double)) == 0;
+            std::memcmp(&s.dw[n], &lanes.dw[n][l], sizeof(double)) == 0;
       bad += !same;
     }
   }

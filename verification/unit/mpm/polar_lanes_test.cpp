@@ -48,9 +48,9 @@ Tally compare(const std::vector<Mat<2>>& F) {
           continue;
         }
         const bool same = same_bits(ref.R(0, 0), lanes.c[l]) && same_bits(ref.R(1, 0), lanes.s[l]) &&
-                          same_bits(ref.R(0, 1), -lanes.s[l]) && same_bits(ref.log_U(0, 0), lanes.l00[l]) &&
-                          same_bits(ref.log_U(0, 1), lanes.l01[l]) && same_bits(ref.log_U(1, 0), lanes.l01[l]) &&
-                          same_bits(ref.log_U(1, 1), lanes.l11[l]);
+            same_bits(ref.R(0, 1), -lanes.s[l]) && same_bits(ref.log_U(0, 0), lanes.l00[l]) &&
+            same_bits(ref.log_U(0, 1), lanes.l01[l]) && same_bits(ref.log_U(1, 0), lanes.l01[l]) &&
+            same_bits(ref.log_U(1, 1), lanes.l11[l]);
         t.differing += !same;
       }
     }
