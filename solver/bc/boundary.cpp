@@ -1,19 +1,6 @@
 #include "solver/bc/boundary.hpp"
 
 namespace pdmpm::bc {
-namespace {
-
-template <int D>
-ExpressionVariables variables(const Vec<D>& x, double t) {
-  ExpressionVariables v;
-  v.t = t;
-  v.x = x[0];
-  if constexpr (D > 1) v.y = x[1];
-  if constexpr (D > 2) v.z = x[2];
-  return v;
-}
-
-}  // namespace
 
 template <int D>
 void Boundaries<D>::finalise(Index n_real) {
@@ -30,7 +17,7 @@ void Boundaries<D>::apply_velocity(core::Particles<D>& p, double t) const {
     if (c.kind != ConstraintKind::velocity) continue;
     for (Index i : c.particles) {
       if (p.kind[i] != core::ParticleKind::pd) continue;  // the grid constrains MPM particles (hybrid)
-      const auto vars = variables<D>(p.x0[i], t);
+      const auto vars = variables_at<D>(p.x0[i], t);
       for (int a = 0; a < D; ++a)
         if (c.active[a]) p.v[i][a] = c.value[a](vars);
     }
@@ -51,7 +38,7 @@ void Boundaries<D>::apply_displacement(core::Particles<D>& p, double t, double d
           break;
         case ConstraintKind::displacement: {
           // v from the change over the step: consistent with the drift u += dt v.
-          const auto now = variables<D>(p.x0[i], t), before = variables<D>(p.x0[i], t - dt);
+          const auto now = variables_at<D>(p.x0[i], t), before = variables_at<D>(p.x0[i], t - dt);
           for (int a = 0; a < D; ++a) {
             if (!c.active[a]) continue;
             const double u1 = c.value[a](now);
@@ -76,7 +63,7 @@ template <int D>
 void Boundaries<D>::add_tractions(core::Particles<D>& p, double t) const {
   for (const auto& tr : tractions) {
     for (Index i : tr.particles) {
-      const auto vars = variables<D>(p.x0[i], t);
+      const auto vars = variables_at<D>(p.x0[i], t);
       for (int a = 0; a < D; ++a) p.b[i][a] += tr.value[a](vars) / tr.layer;
     }
   }

@@ -8,11 +8,24 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/types.hpp"
+
 namespace pdmpm::bc {
 
 struct ExpressionVariables {
   double t = 0.0, x = 0.0, y = 0.0, z = 0.0;
 };
+
+// The variables at a point x of a D-dimensional body at time t (unused axes 0).
+template <int D>
+ExpressionVariables variables_at(const Vec<D>& x, double t) {
+  ExpressionVariables v;
+  v.t = t;
+  v.x = x[0];
+  if constexpr (D > 1) v.y = x[1];
+  if constexpr (D > 2) v.z = x[2];
+  return v;
+}
 
 class ExpressionError : public std::runtime_error {
  public:

@@ -1,25 +1,13 @@
 #include "solver/bc/initial_condition.hpp"
 
 namespace pdmpm::bc {
-namespace {
 
 // Initial values are at t = 0 (the parser refuses t in them).
-template <int D>
-ExpressionVariables at(const Vec<D>& x) {
-  ExpressionVariables v;
-  v.x = x[0];
-  if constexpr (D > 1) v.y = x[1];
-  if constexpr (D > 2) v.z = x[2];
-  return v;
-}
-
-}  // namespace
-
 template <int D>
 void apply_initial_conditions(const std::vector<InitialCondition<D>>& conditions, core::Particles<D>& p) {
   for (const auto& c : conditions)
     for (Index i : c.particles) {
-      const auto vars = at<D>(p.x0[i]);
+      const auto vars = variables_at<D>(p.x0[i], 0.0);
       for (int a = 0; a < D; ++a) {
         if (c.velocity[a]) p.v[i][a] = (*c.velocity[a])(vars);
         if (c.displacement[a]) p.u[i][a] = (*c.displacement[a])(vars);
@@ -50,7 +38,8 @@ std::vector<std::pair<Index, Mat<D>>> initial_displacement_gradients(const std::
         Vec<D> ahead = p.x0[i], behind = p.x0[i];
         ahead[b] += h;
         behind[b] -= h;
-        grad(a, b) = ((*source[i][a])(at<D>(ahead)) - (*source[i][a])(at<D>(behind))) / (2.0 * h);
+        grad(a, b) =
+            ((*source[i][a])(variables_at<D>(ahead, 0.0)) - (*source[i][a])(variables_at<D>(behind, 0.0))) / (2.0 * h);
       }
     }
     if (any) out.emplace_back(i, grad);

@@ -59,10 +59,7 @@ __attribute__((target("avx512f"))) void gimp_lanes_avx512(const double* x, const
 }  // namespace
 
 std::vector<LaneVariant<GimpLanesFunction>> gimp_lanes_variants() {
-  std::vector<LaneVariant<GimpLanesFunction>> v{{"sse2", gimp_lanes_sse2}};
-  if (__builtin_cpu_supports("avx2")) v.push_back({"avx2", gimp_lanes_avx2});
-  if (__builtin_cpu_supports("avx512f")) v.push_back({"avx512", gimp_lanes_avx512});
-  return v;
+  return lane_variants<GimpLanesFunction>(gimp_lanes_sse2, gimp_lanes_avx2, gimp_lanes_avx512);
 }
 
 void gimp_lanes(const double* x_rel, const double* lp, double h, GimpLanes& out) {

@@ -15,6 +15,15 @@ struct LaneVariant {
   Function function;
 };
 
+// The versions this machine runs, narrowest first.
+template <class Function>
+std::vector<LaneVariant<Function>> lane_variants(Function sse2, Function avx2, Function avx512) {
+  std::vector<LaneVariant<Function>> v{{"sse2", sse2}};
+  if (__builtin_cpu_supports("avx2")) v.push_back({"avx2", avx2});
+  if (__builtin_cpu_supports("avx512f")) v.push_back({"avx512", avx512});
+  return v;
+}
+
 // The widest version, or the one PDMPM_SIMD names (as for the PD bond kernels).
 template <class Function>
 Function choose_lane_variant(const std::vector<LaneVariant<Function>>& variants) {

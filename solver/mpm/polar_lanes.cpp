@@ -59,10 +59,7 @@ __attribute__((target("avx512f"))) unsigned polar_log_lanes_avx512(PolarLanes& i
 }  // namespace
 
 std::vector<LaneVariant<PolarLanesFunction>> polar_lanes_variants() {
-  std::vector<LaneVariant<PolarLanesFunction>> v{{"sse2", polar_log_lanes_sse2}};
-  if (__builtin_cpu_supports("avx2")) v.push_back({"avx2", polar_log_lanes_avx2});
-  if (__builtin_cpu_supports("avx512f")) v.push_back({"avx512", polar_log_lanes_avx512});
-  return v;
+  return lane_variants<PolarLanesFunction>(polar_log_lanes_sse2, polar_log_lanes_avx2, polar_log_lanes_avx512);
 }
 
 unsigned polar_log_lanes(PolarLanes& lanes) {
