@@ -48,17 +48,23 @@ class ExpressionParser {
   int expr() {
     int left = term();
     while (true) {
-      if (accept('+')) left = binary(Op::add, left, term());
-      else if (accept('-')) left = binary(Op::sub, left, term());
-      else return left;
+      if (accept('+'))
+        left = binary(Op::add, left, term());
+      else if (accept('-'))
+        left = binary(Op::sub, left, term());
+      else
+        return left;
     }
   }
   int term() {
     int left = unary();
     while (true) {
-      if (accept('*')) left = binary(Op::mul, left, unary());
-      else if (accept('/')) left = binary(Op::div, left, unary());
-      else return left;
+      if (accept('*'))
+        left = binary(Op::mul, left, unary());
+      else if (accept('/'))
+        left = binary(Op::div, left, unary());
+      else
+        return left;
     }
   }
   int unary() {
@@ -115,18 +121,30 @@ class ExpressionParser {
     using F2 = double (*)(double, double);
     F1 f1 = nullptr;
     F2 f2 = nullptr;
-    if (id == "sin") f1 = [](double a) { return std::sin(a); };
-    else if (id == "cos") f1 = [](double a) { return std::cos(a); };
-    else if (id == "tan") f1 = [](double a) { return std::tan(a); };
-    else if (id == "exp") f1 = [](double a) { return std::exp(a); };
-    else if (id == "log") f1 = [](double a) { return std::log(a); };
-    else if (id == "sqrt") f1 = [](double a) { return std::sqrt(a); };
-    else if (id == "abs") f1 = [](double a) { return std::abs(a); };
-    else if (id == "tanh") f1 = [](double a) { return std::tanh(a); };
-    else if (id == "heaviside") f1 = [](double a) { return a >= 0.0 ? 1.0 : 0.0; };
-    else if (id == "min") f2 = [](double a, double b) { return std::min(a, b); };
-    else if (id == "max") f2 = [](double a, double b) { return std::max(a, b); };
-    else if (id == "pow") f2 = [](double a, double b) { return std::pow(a, b); };
+    if (id == "sin")
+      f1 = [](double a) { return std::sin(a); };
+    else if (id == "cos")
+      f1 = [](double a) { return std::cos(a); };
+    else if (id == "tan")
+      f1 = [](double a) { return std::tan(a); };
+    else if (id == "exp")
+      f1 = [](double a) { return std::exp(a); };
+    else if (id == "log")
+      f1 = [](double a) { return std::log(a); };
+    else if (id == "sqrt")
+      f1 = [](double a) { return std::sqrt(a); };
+    else if (id == "abs")
+      f1 = [](double a) { return std::abs(a); };
+    else if (id == "tanh")
+      f1 = [](double a) { return std::tanh(a); };
+    else if (id == "heaviside")
+      f1 = [](double a) { return a >= 0.0 ? 1.0 : 0.0; };
+    else if (id == "min")
+      f2 = [](double a, double b) { return std::min(a, b); };
+    else if (id == "max")
+      f2 = [](double a, double b) { return std::max(a, b); };
+    else if (id == "pow")
+      f2 = [](double a, double b) { return std::pow(a, b); };
     else {
       pos_ = start;
       fail("unknown function '" + id + "'");
@@ -160,19 +178,32 @@ Expression Expression::parse(const std::string& text) { return ExpressionParser(
 double Expression::eval(int n, const ExpressionVariables& v) const {
   const Node& node = nodes_[n];
   switch (node.op) {
-    case Op::constant: return node.value;
-    case Op::var_t: return v.t;
-    case Op::var_x: return v.x;
-    case Op::var_y: return v.y;
-    case Op::var_z: return v.z;
-    case Op::add: return eval(node.a, v) + eval(node.b, v);
-    case Op::sub: return eval(node.a, v) - eval(node.b, v);
-    case Op::mul: return eval(node.a, v) * eval(node.b, v);
-    case Op::div: return eval(node.a, v) / eval(node.b, v);
-    case Op::pow: return std::pow(eval(node.a, v), eval(node.b, v));
-    case Op::neg: return -eval(node.a, v);
-    case Op::call1: return node.f1(eval(node.a, v));
-    case Op::call2: return node.f2(eval(node.a, v), eval(node.b, v));
+    case Op::constant:
+      return node.value;
+    case Op::var_t:
+      return v.t;
+    case Op::var_x:
+      return v.x;
+    case Op::var_y:
+      return v.y;
+    case Op::var_z:
+      return v.z;
+    case Op::add:
+      return eval(node.a, v) + eval(node.b, v);
+    case Op::sub:
+      return eval(node.a, v) - eval(node.b, v);
+    case Op::mul:
+      return eval(node.a, v) * eval(node.b, v);
+    case Op::div:
+      return eval(node.a, v) / eval(node.b, v);
+    case Op::pow:
+      return std::pow(eval(node.a, v), eval(node.b, v));
+    case Op::neg:
+      return -eval(node.a, v);
+    case Op::call1:
+      return node.f1(eval(node.a, v));
+    case Op::call2:
+      return node.f2(eval(node.a, v), eval(node.b, v));
   }
   return 0.0;
 }

@@ -20,7 +20,8 @@ Mat<3> neo_hookean_kirchhoff(const core::Elastic& m, const Mat<3>& F3, double& J
   const double log1p_x = std::log1p(x);
   const double lnJ = 0.5 * log1p_x;
   // x − log1p(x) by its series where the difference would cancel.
-  const double x_minus_log1p = std::abs(x) < 1e-3 ? x * x * (0.5 - x / 3.0 + x * x / 4.0 - x * x * x / 5.0) : x - log1p_x;
+  const double x_minus_log1p =
+      std::abs(x) < 1e-3 ? x * x * (0.5 - x / 3.0 + x * x / 4.0 - x * x * x / 5.0) : x - log1p_x;
   energy = 0.5 * mu * (x_minus_log1p - I2 - G.determinant()) + 0.5 * lambda * lnJ * lnJ;
   const Mat<3> B_minus_I = F3 * F3.transpose() - Mat<3>::Identity();
   return mu * B_minus_I + lambda * lnJ * Mat<3>::Identity();

@@ -12,20 +12,20 @@ namespace pdmpm::mpm {
 
 template <int D>
 struct ParticleState {
-  std::vector<double> mass;              // m_p = ρ V₀ (kg)
-  std::vector<Vec<D>> half_width;        // uGIMP half-widths lp (m)
-  std::vector<Mat<D>> F;                 // deformation gradient
-  std::vector<Mat<3>> kirchhoff;         // τ = J σ (Pa), drives the grid forces
-  std::vector<Mat<3>> stress;            // Cauchy σ (Pa), 3×3 (σ₃₃ of plane strain included)
-  std::vector<double> J;                 // volume ratio (3D, thickness change included)
-  std::vector<double> out_of_plane_strain;  // plane stress ε₃₃ / bar lateral strain
-  std::vector<PointHistory> history;     // plastic strain, ε̄_p
+  std::vector<double> mass;                  // m_p = ρ V₀ (kg)
+  std::vector<Vec<D>> half_width;            // uGIMP half-widths lp (m)
+  std::vector<Mat<D>> F;                     // deformation gradient
+  std::vector<Mat<3>> kirchhoff;             // τ = J σ (Pa), drives the grid forces
+  std::vector<Mat<3>> stress;                // Cauchy σ (Pa), 3×3 (σ₃₃ of plane strain included)
+  std::vector<double> J;                     // volume ratio (3D, thickness change included)
+  std::vector<double> out_of_plane_strain;   // plane stress ε₃₃ / bar lateral strain
+  std::vector<PointHistory> history;         // plastic strain, ε̄_p
   std::vector<double> eq_plastic_hardening;  // ε̂_p used by hardening/failure (= ε̄_p when local)
-  std::vector<double> energy;            // stored elastic energy density (J/m³ of V₀)
-  std::vector<double> dissipation;       // accumulated plastic work density (J/m³ of V₀)
-  std::vector<double> damage;            // accumulated ∫ dε̄_p/ε_f (rule "accumulated")
-  std::vector<std::uint8_t> failed;      // 1 once the ductile criterion was met
-  std::vector<std::uint8_t> initialised; // 0 for slots not yet set up (particles added later)
+  std::vector<double> energy;                // stored elastic energy density (J/m³ of V₀)
+  std::vector<double> dissipation;           // accumulated plastic work density (J/m³ of V₀)
+  std::vector<double> damage;                // accumulated ∫ dε̄_p/ε_f (rule "accumulated")
+  std::vector<std::uint8_t> failed;          // 1 once the ductile criterion was met
+  std::vector<std::uint8_t> initialised;     // 0 for slots not yet set up (particles added later)
 
   Index size() const { return static_cast<Index>(mass.size()); }
   void resize(Index n) {

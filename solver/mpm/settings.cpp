@@ -50,7 +50,8 @@ template <int D>
 void validate(const Settings<D>& s, double particle_spacing, const std::string& file, const std::string& prefix) {
   const Checker c{file, prefix};
   if (dimension(s.setting) != D)
-    c.fail("setting", fmt::format("'{}' is a {}D setting but the body is {}D", name(s.setting), dimension(s.setting), D));
+    c.fail("setting",
+           fmt::format("'{}' is a {}D setting but the body is {}D", name(s.setting), dimension(s.setting), D));
   c.positive("(particle spacing)", particle_spacing);
 
   // Grid.
@@ -60,7 +61,8 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
   // uGIMP particle domains (half-width Δx/2) must fit in one cell, else a particle
   // would touch 4 nodes per axis (the stencil and the scatter colouring assume ≤ 3).
   if (s.shape == ShapeFunction::gimp && particle_spacing > h * (1.0 + 1e-12))
-    c.fail("grid.cell_size", fmt::format("must be ≥ the particle spacing Δx = {} for GIMP (got {})", particle_spacing, h));
+    c.fail("grid.cell_size",
+           fmt::format("must be ≥ the particle spacing Δx = {} for GIMP (got {})", particle_spacing, h));
   for (int a = 0; a < D; ++a) c.finite("grid.origin", s.origin[a]);
   if (s.domain_min.has_value() != s.domain_max.has_value())
     c.fail(s.domain_min ? "grid.max" : "grid.min", "grid.min and grid.max must be given together");
@@ -69,8 +71,9 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
       c.finite("grid.min", (*s.domain_min)[a]);
       c.finite("grid.max", (*s.domain_max)[a]);
       if (!((*s.domain_max)[a] > (*s.domain_min)[a]))
-        c.fail("grid.max", fmt::format("must exceed grid.min on every axis (min {}, max {})", vec_str<D>(*s.domain_min),
-                                       vec_str<D>(*s.domain_max)));
+        c.fail("grid.max",
+               fmt::format("must exceed grid.min on every axis (min {}, max {})", vec_str<D>(*s.domain_min),
+                           vec_str<D>(*s.domain_max)));
     }
   }
   if (s.padding_cells < 2 || s.padding_cells > 100)
@@ -88,8 +91,9 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
   }
   if (m.model == MaterialModel::neo_hookean &&
       (s.setting == core::Setting::plane_stress || s.setting == core::Setting::bar1d))
-    c.fail("material.model", fmt::format("neo_hookean is implemented for 3d, plane_strain and uniaxial_strain, not '{}'",
-                                         name(s.setting)));
+    c.fail(
+        "material.model",
+        fmt::format("neo_hookean is implemented for 3d, plane_strain and uniaxial_strain, not '{}'", name(s.setting)));
   if (s.nonlocal.enabled) {
     if (m.model != MaterialModel::j2) c.fail("nonlocal.enabled", "non-local plastic strain needs material.model = j2");
     c.positive("nonlocal.length", s.nonlocal.length);
@@ -112,14 +116,16 @@ void validate(const Settings<D>& s, double particle_spacing, const std::string& 
       if (b.side != 1 && b.side != -1) c.fail(k + ".side", fmt::format("must be +1 or -1 (got {})", b.side));
       const double g = (b.position - s.origin[b.axis]) / h;
       if (std::abs(g - std::round(g)) > 1e-9)
-        c.fail(k + ".position", fmt::format("a symmetry plane must lie on a grid line (origin {} + k·{}); got {}",
-                                            s.origin[b.axis], h, b.position));
+        c.fail(k + ".position",
+               fmt::format("a symmetry plane must lie on a grid line (origin {} + k·{}); got {}", s.origin[b.axis], h,
+                           b.position));
     } else {
       for (int a = 0; a < D; ++a) {
         if (std::isnan(b.min[a]) || std::isnan(b.max[a])) c.fail(k + ".min", "region bounds must not be NaN");
         if (b.max[a] < b.min[a])
-          c.fail(k + ".max", fmt::format("region max must be ≥ min on every axis (min {}, max {})", vec_str<D>(b.min),
-                                         vec_str<D>(b.max)));
+          c.fail(k + ".max",
+                 fmt::format("region max must be ≥ min on every axis (min {}, max {})", vec_str<D>(b.min),
+                             vec_str<D>(b.max)));
       }
     }
     if (b.kind == BcKind::velocity) {

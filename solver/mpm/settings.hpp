@@ -57,38 +57,41 @@ enum class BcKind {
   symmetry,  // mirror plane on a grid line: nodes beyond it mirror those inside
 };
 constexpr std::array<EnumName<BcKind>, 4> names(BcKind) {
-  return {{{BcKind::fixed, "fixed"}, {BcKind::roller, "roller"}, {BcKind::velocity, "velocity"}, {BcKind::symmetry, "symmetry"}}};
+  return {{{BcKind::fixed, "fixed"},
+           {BcKind::roller, "roller"},
+           {BcKind::velocity, "velocity"},
+           {BcKind::symmetry, "symmetry"}}};
 }
 
 // The material of an MPM body: its constitutive law, elastic constants and (j2) hardening.
 struct Material {
   MaterialModel model = MaterialModel::linear_elastic;  // key "material.model"
-  core::Elastic elastic;    // "material.E", "material.nu" (−1, 0.5), "material.rho" (all > 0 but ν)
-  core::J2Hardening j2;     // j2 only: "material.yield_stress" > 0, "material.tangent_modulus" [0, E)
+  core::Elastic elastic;  // "material.E", "material.nu" (−1, 0.5), "material.rho" (all > 0 but ν)
+  core::J2Hardening j2;   // j2 only: "material.yield_stress" > 0, "material.tangent_modulus" [0, E)
 };
 
 // Non-local equivalent plastic strain (after Burghardt, Brannon & Guilkey 2012):
 // hardening and failure use ε̂ = (1 − m) ε̄_p + m ⟨ε̄_p⟩, where ⟨·⟩ is a Gaussian-weighted
 // average over particles within 3ℓ of the current positions.
 struct Nonlocal {
-  bool enabled = false;   // "nonlocal.enabled"
-  double length = 0.0;    // "nonlocal.length" ℓ (m), > 0 when enabled
-  double m = 1.0;         // "nonlocal.m" over-nonlocal weight, [0, 4]
+  bool enabled = false;  // "nonlocal.enabled"
+  double length = 0.0;   // "nonlocal.length" ℓ (m), > 0 when enabled
+  double m = 1.0;        // "nonlocal.m" over-nonlocal weight, [0, 4]
 };
 
 template <int D>
 struct GridBc {
-  std::string name;                 // "boundary[i].name" (for messages and reactions)
-  BcKind kind = BcKind::fixed;      // "boundary[i].kind"
+  std::string name;             // "boundary[i].name" (for messages and reactions)
+  BcKind kind = BcKind::fixed;  // "boundary[i].kind"
   // Nodes inside the closed box [min, max] (fixed, roller, velocity).
   Vec<D> min = Vec<D>::Constant(-std::numeric_limits<double>::infinity());  // "boundary[i].min"
   Vec<D> max = Vec<D>::Constant(std::numeric_limits<double>::infinity());   // "boundary[i].max"
-  int axis = 0;                     // "boundary[i].axis" roller/symmetry normal, [0, D)
-  double position = 0.0;            // "boundary[i].position" symmetry plane, on a grid line
-  int side = +1;                    // "boundary[i].side" symmetry: +1 body at x > position, −1 below
-  Vec<D> velocity = Vec<D>::Zero(); // "boundary[i].velocity" (m/s)
-  std::array<bool, D> components{}; // "boundary[i].components" prescribed components (velocity)
-  double ramp_time = 0.0;           // "boundary[i].ramp_time" linear ramp 0 → velocity (s), ≥ 0
+  int axis = 0;                      // "boundary[i].axis" roller/symmetry normal, [0, D)
+  double position = 0.0;             // "boundary[i].position" symmetry plane, on a grid line
+  int side = +1;                     // "boundary[i].side" symmetry: +1 body at x > position, −1 below
+  Vec<D> velocity = Vec<D>::Zero();  // "boundary[i].velocity" (m/s)
+  std::array<bool, D> components{};  // "boundary[i].components" prescribed components (velocity)
+  double ramp_time = 0.0;            // "boundary[i].ramp_time" linear ramp 0 → velocity (s), ≥ 0
   // Instead of the constant, v(x, t) at the node position x (e.g. a scene expression);
   // only the `components` flagged are imposed. The ramp still applies.
   std::function<Vec<D>(const Vec<D>& x, double t)> velocity_field;
@@ -112,25 +115,27 @@ struct Traction {
 
 template <int D>
 struct Settings {
-  core::Setting setting = D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_stress : core::Setting::solid3d;  // "setting"
+  core::Setting setting = D == 1 ? core::Setting::bar1d
+      : D == 2                   ? core::Setting::plane_stress
+                                 : core::Setting::solid3d;  // "setting"
 
   // Background grid. Grid lines pass through `origin`; cell size is `cell_size` if > 0,
   // else cell_factor × particle spacing (Noorian et al.: 2Δx). The node box is [domain_min,
   // domain_max] snapped outward to grid lines; unset → particle bounds ± padding_cells.
-  double cell_size = 0.0;         // "grid.cell_size" (m), ≥ 0
-  double cell_factor = 2.0;       // "grid.cell_factor", [1, 16]
-  Vec<D> origin = Vec<D>::Zero(); // "grid.origin"
+  double cell_size = 0.0;                        // "grid.cell_size" (m), ≥ 0
+  double cell_factor = 2.0;                      // "grid.cell_factor", [1, 16]
+  Vec<D> origin = Vec<D>::Zero();                // "grid.origin"
   std::optional<Vec<D>> domain_min, domain_max;  // "grid.min", "grid.max"
-  int padding_cells = 3;          // "grid.padding_cells", [2, 100]
+  int padding_cells = 3;                         // "grid.padding_cells", [2, 100]
 
   ShapeFunction shape = ShapeFunction::gimp;   // "shape_function"
   GimpDomain gimp_domain = GimpDomain::fixed;  // "gimp_domain" (gimp only)
   UpdateScheme scheme = UpdateScheme::musl;    // "update_scheme"
-  double flip = 1.0;              // "flip" FLIP fraction of the particle velocity update, [0, 1]
+  double flip = 1.0;                           // "flip" FLIP fraction of the particle velocity update, [0, 1]
 
-  Material material;              // "material.*"
-  Nonlocal nonlocal;              // "nonlocal.*"
-  core::DuctileFailure failure;   // "failure.*"
+  Material material;             // "material.*"
+  Nonlocal nonlocal;             // "nonlocal.*"
+  core::DuctileFailure failure;  // "failure.*"
 
   std::vector<GridBc<D>> boundaries;   // "boundary[i]"
   std::vector<Traction<D>> tractions;  // "traction[i]"
@@ -139,10 +144,10 @@ struct Settings {
   // reference position X; not a scene key.
   std::function<Vec<D>(const Vec<D>& X, double t)> body_acceleration;
 
-  double dt = 0.0;                // "dt" fixed step (s); 0 → cfl × stable step
-  double cfl = 0.5;               // "cfl" (0, 1]
-  double damping_viscous = 0.0;   // "damping.viscous" grid mass-proportional damping c (1/s), ≥ 0
-  double damping_local = 0.0;     // "damping.local" Cundall local damping factor, [0, 1)
+  double dt = 0.0;               // "dt" fixed step (s); 0 → cfl × stable step
+  double cfl = 0.5;              // "cfl" (0, 1]
+  double damping_viscous = 0.0;  // "damping.viscous" grid mass-proportional damping c (1/s), ≥ 0
+  double damping_local = 0.0;    // "damping.local" Cundall local damping factor, [0, 1)
 };
 
 // Checks every setting; `particle_spacing` is the lattice spacing Δx of the particles.

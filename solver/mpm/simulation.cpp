@@ -10,9 +10,9 @@
 
 #include "solver/core/error.hpp"
 #include "solver/mpm/deterministic_sum.hpp"
+#include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/nonlocal.hpp"
-#include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/polar_lanes.hpp"
 #include "solver/mpm/stress_measures.hpp"
@@ -223,7 +223,8 @@ void Simulation<D>::compute_gimp_stencils(Index& bad) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index gi = 0; gi < groups; ++gi) {
     const Index k0 = gi * kGimpLanes;
-    prefetch_ahead(order, std::min(k0 + kGimpLanes - 1, na - 1), particles_.x0, particles_.u, state_.half_width);
+    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)  // the next group's particles
+      prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
     std::array<Vec<D>, kGimpLanes> x_rel, lp;
     for (int l = 0; l < kGimpLanes; ++l) {
       const Index p = order[std::min(k0 + l, na - 1)];
@@ -469,7 +470,7 @@ void Simulation<D>::polar_decompositions(Index& bad) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
     for (Index gi = 0; gi < groups; ++gi) {
       const Index k0 = gi * kPolarLanes, n = std::min<Index>(kPolarLanes, na - k0);
-      prefetch_ahead(order, k0 + n - 1, state_.F);
+      for (Index k = k0; k < k0 + n; ++k) prefetch_ahead(order, k, state_.F, state_.failed);  // the next group's
       PolarLanes lanes;
       for (int l = 0; l < kPolarLanes; ++l) {
         const Mat<D>& F = state_.F[order[k0 + std::min<Index>(l, n - 1)]];

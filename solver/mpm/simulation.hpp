@@ -137,8 +137,10 @@ class Simulation {
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_nonlocal();
   Vec<D> external_force(Index p, double t) const;
-  void compute_gimp_stencils(Index& bad);   // stencil_ in schedule order; bad = lowest particle
-  void compute_other_stencils(Index& bad);  // outside the grid (left unchanged if none)
+  // stencil_ (polar_) of the active particles in schedule order; bad = the lowest particle
+  // whose stencil leaves the grid (whose F has inverted), left as it is if none.
+  void compute_gimp_stencils(Index& bad);
+  void compute_other_stencils(Index& bad);
   void polar_decompositions(Index& bad);
   bool inside_grid(const Stencil<D>& st) const;  // every node of the stencil is a grid node
 
