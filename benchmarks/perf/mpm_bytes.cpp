@@ -23,11 +23,11 @@ MpmByteAccount mpm_bytes_per_particle_step() {
   // G2P with MUSL's remap: velocity and displacement read and written, mass.
   a.phases.push_back({"G2P", index + stencil + 4 * vec + real});
   // stress: F (read, written), the decomposition (written, read), failure flag twice,
-  // history (read, written), hardening variable, τ, σ, J, ε₃₃, energy written,
+  // history (read, written), hardening variable, τ, J, ε₃₃, energy written,
   // dissipation read and written.
   a.phases.push_back({"stress",
                       (index + stencil + 2 * matD) + (index + flag + matD + polar) +
-                          (index + flag + 2 * history + real + polar + 2 * mat3 + 4 * real + 2 * real)});
+                          (index + flag + 2 * history + real + polar + mat3 + 4 * real + 2 * real)});
   for (const auto& p : a.phases) a.total += p.second;
   return a;
 }

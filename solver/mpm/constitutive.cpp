@@ -1,6 +1,7 @@
 #include "solver/mpm/constitutive.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "solver/mpm/hencky_elastic.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
@@ -94,6 +95,17 @@ StressResult Constitutive<D>::update(const PolarLog<D>& pl, PointHistory& histor
     r.kirchhoff = R * T * R.transpose();
   }
   return r;
+}
+
+template <int D>
+std::optional<PlaneStressLaw> Constitutive<D>::plane_stress_law() const {
+  if (D != 2 || setting_ != core::Setting::plane_stress || !log_strain()) return std::nullopt;
+  if (m_.model == MaterialModel::linear_elastic)  // J2 that never yields
+    return PlaneStressLaw{j2_.plane_stress_modulus, j2_.nu, j2_.thickness_strain,
+                          std::numeric_limits<double>::infinity(), 0.0};
+  if (m_.model == MaterialModel::j2)
+    return PlaneStressLaw{j2_.plane_stress_modulus, j2_.nu, j2_.thickness_strain, j2_.yield_stress, j2_.H};
+  return std::nullopt;
 }
 
 template class Constitutive<1>;

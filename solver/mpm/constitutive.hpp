@@ -3,10 +3,13 @@
 // and history to the Kirchhoff stress τ (3×3, current frame). Chooses the law by
 // model and the out-of-plane kinematics by setting; every law is objective:
 // τ(QF) = Q τ(F) Qᵀ for any rotation Q.
+#include <optional>
+
 #include "solver/core/types.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/material_point.hpp"
+#include "solver/mpm/plane_stress_lanes.hpp"
 #include "solver/mpm/settings.hpp"
 
 namespace pdmpm::mpm {
@@ -24,6 +27,9 @@ class Constitutive {
   // decompositions in a pass of their own (simulation.cpp).
   bool log_strain() const { return m_.model != MaterialModel::neo_hookean; }
   StressResult update(const PolarLog<D>& polar, PointHistory& history, double hardening_offset = 0.0) const;
+  // The constants for plane_stress_lanes (the elastic path of this law eight points at a
+  // time), or none if the law is not a plane-stress J2 or linear elastic one.
+  std::optional<PlaneStressLaw> plane_stress_law() const;
 
   const Material& material() const { return m_; }
   core::Setting setting() const { return setting_; }

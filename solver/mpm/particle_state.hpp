@@ -16,7 +16,6 @@ struct ParticleState {
   std::vector<Vec<D>> half_width;            // uGIMP half-widths lp (m)
   std::vector<Mat<D>> F;                     // deformation gradient
   std::vector<Mat<3>> kirchhoff;             // τ = J σ (Pa), drives the grid forces
-  std::vector<Mat<3>> stress;                // Cauchy σ (Pa), 3×3 (σ₃₃ of plane strain included)
   std::vector<double> J;                     // volume ratio (3D, thickness change included)
   std::vector<double> out_of_plane_strain;   // plane stress ε₃₃ / bar lateral strain
   std::vector<PointHistory> history;         // plastic strain, ε̄_p
@@ -28,13 +27,15 @@ struct ParticleState {
   std::vector<std::uint8_t> initialised;     // 0 for slots not yet set up (particles added later)
 
   Index size() const { return static_cast<Index>(mass.size()); }
+  // Cauchy stress σ = τ / J (Pa), 3×3 (σ₃₃ of plane strain included): derived when
+  // asked, not stored — the step needs only τ.
+  Mat<3> cauchy(Index p) const { return kirchhoff[p] / J[p]; }
   void resize(Index n) {
     const std::size_t N = static_cast<std::size_t>(n);
     mass.resize(N, 0.0);
     half_width.resize(N, Vec<D>::Zero());
     F.resize(N, Mat<D>::Identity());
     kirchhoff.resize(N, Mat<3>::Zero());
-    stress.resize(N, Mat<3>::Zero());
     J.resize(N, 1.0);
     out_of_plane_strain.resize(N, 0.0);
     history.resize(N);

@@ -11,9 +11,11 @@
 #include "solver/core/error.hpp"
 #include "solver/mpm/deterministic_sum.hpp"
 #include "solver/mpm/gimp_lanes.hpp"
+#include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/nonlocal.hpp"
 #include "solver/mpm/parallel.hpp"
+#include "solver/mpm/plane_stress_lanes.hpp"
 #include "solver/mpm/polar_lanes.hpp"
 #include "solver/mpm/stress_measures.hpp"
 
@@ -149,7 +151,6 @@ void Simulation<D>::initialise_particle(Index p) {
   state_.half_width[p] = Vec<D>::Constant(0.5 * dx);
   state_.F[p].setIdentity();
   state_.kirchhoff[p].setZero();
-  state_.stress[p].setZero();
   state_.J[p] = 1.0;
   state_.out_of_plane_strain[p] = 0.0;
   state_.history[p] = PointHistory{};
@@ -355,31 +356,30 @@ void Simulation<D>::update_nonlocal() {
   for (Index p : active_) state_.eq_plastic_hardening[p] = (1.0 - m) * a[p] + m * avg[p];
 }
 
-// Three passes over the particles in the stencils' order: F from the grid velocity,
-// the polar decompositions of the log-strain laws, the law itself. The decomposition
-// is a long chain of dependent operations (two square roots, two divisions, a
-// series, a logarithm); in a pass of its own the processor overlaps the chains of
-// successive particles, which one long loop body does not let it do.
+// F of the particle at k in the schedule from the grid velocity vg (and its uGIMP
+// half-widths if the domains stretch).
+template <int D>
+void Simulation<D>::advance_deformation(Index k, const std::vector<Vec<D>>& vg, double dt) {
+  const Index p = schedule_.order()[k];
+  Mat<D> L = Mat<D>::Zero();
+  for_each_grid_node<D>(stencil_[k], K_, grid_.stride,
+                        [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
+  state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
+  if (settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch) {
+    const double lp0 = 0.5 * particles_.lattice.spacing;
+    for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
+  }
+}
+
+// F, the law and the ductile criterion of every active particle. The plane-stress
+// laws go eight points at a time in one pass (update_stress_in_lanes); the others in
+// three passes in the stencils' order: F, the polar decompositions of the log-strain
+// laws, the law. The decomposition is a long chain of dependent operations (two
+// square roots, two divisions, a series, a logarithm); in a pass of its own the
+// processor overlaps the chains of successive particles, which one long loop body
+// does not let it do.
 template <int D>
 void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
-  const std::vector<Index>& order = schedule_.order();
-  const Index na = static_cast<Index>(order.size());
-  const IVec<D> stride = grid_.stride;
-  const bool stretch_domains = settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch;
-  const double lp0 = 0.5 * particles_.lattice.spacing;
-#pragma omp parallel for schedule(static) if (na >= kParallelMin)
-  for (Index k = 0; k < na; ++k) {
-    const Index p = order[k];
-    prefetch_ahead(order, k, state_.F);
-    Mat<D> L = Mat<D>::Zero();
-    for_each_grid_node<D>(stencil_[k], K_, stride,
-                          [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
-    state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
-    if (stretch_domains) {
-      for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
-    }
-  }
-
   Index bad = std::numeric_limits<Index>::max();
   auto throw_if_bad = [&] {
     if (bad != std::numeric_limits<Index>::max())
@@ -388,56 +388,151 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
                       "(stable step estimate {} s)",
                       steps_, bad, dt, stable_dt()));
   };
+  if constexpr (D == 2) {
+    if (const std::optional<PlaneStressLaw> law = constitutive_.plane_stress_law()) {
+      update_stress_in_lanes(vg, dt, *law, bad);
+      throw_if_bad();
+      return;
+    }
+  }
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
+#pragma omp parallel for schedule(static) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) {
+    prefetch_ahead(order, k, state_.F);
+    advance_deformation(k, vg, dt);
+  }
   const bool log_strain = constitutive_.log_strain();
   if (log_strain) {
     polar_.resize(order.size());
     polar_decompositions(bad);
     throw_if_bad();
   }
-
-  const core::DuctileFailure& fail = settings_.failure;
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
-    prefetch_ahead(order, k, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.stress, state_.J,
+    prefetch_ahead(order, k, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
                    state_.out_of_plane_strain, state_.energy, state_.dissipation);
     if (state_.failed[p]) continue;  // a failed particle carries no stress
-    PointHistory& hist = state_.history[p];
-    const double alpha_before = hist.eq_plastic_strain;
-    const double offset = state_.eq_plastic_hardening[p] - alpha_before;
-    StressResult r;
-    try {
-      r = log_strain ? constitutive_.update(polar_[k], hist, offset) : constitutive_.update(state_.F[p], hist, offset);
-    } catch (const RunError&) {
-      bad = std::min(bad, p);
-      continue;
-    }
-    state_.kirchhoff[p] = r.kirchhoff;
-    state_.J[p] = r.J;
-    state_.stress[p] = r.kirchhoff / r.J;
-    state_.out_of_plane_strain[p] = r.out_of_plane_strain;
-    state_.energy[p] = r.energy;
-    state_.dissipation[p] += r.dissipation;
-    if (fail.enabled) {
-      const double eta = mpm::triaxiality(state_.stress[p]);
-      const double eps_f = fracture_strain(fail.d0, fail.c, eta);
-      bool broke = false;
-      if (fail.rule == core::FailureRule::strain) {
-        broke = hist.eq_plastic_strain + offset >= eps_f;
-      } else {
-        state_.damage[p] += (hist.eq_plastic_strain - alpha_before) / eps_f;
-        broke = state_.damage[p] >= 1.0;
-      }
-      if (broke) {
-        state_.failed[p] = 1;
-        failed_this_step_[p] = 1;
-        state_.kirchhoff[p].setZero();
-        state_.stress[p].setZero();
-        state_.energy[p] = 0.0;
-      }
-    }
+    if (!apply_law(p, log_strain ? &polar_[k] : nullptr)) bad = std::min(bad, p);
   }
   throw_if_bad();
+}
+
+// The plane-stress laws in one pass of groups of eight particles in the schedule's
+// order: F, the polar decompositions (polar_lanes.hpp), the law's elastic path
+// (plane_stress_lanes.hpp); the lanes those flag go through polar_log<2> and the
+// law point by point. Nothing is stored between the stages.
+template <int D>
+void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double dt, const PlaneStressLaw& law,
+                                           Index& bad) {
+  if constexpr (D == 2) {
+    static_assert(kPolarLanes == kLawLanes);
+    const std::vector<Index>& order = schedule_.order();
+    const Index na = static_cast<Index>(order.size());
+    const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
+    const Index groups = (na + kLawLanes - 1) / kLawLanes;
+#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
+    for (Index gi = 0; gi < groups; ++gi) {
+      const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
+      for (Index k = k0; k < k0 + n; ++k)  // the next group's
+        prefetch_ahead(order, k, state_.F, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
+                       state_.out_of_plane_strain, state_.energy, state_.dissipation, state_.failed);
+      PolarLanes polar;
+      for (int l = 0; l < kLawLanes; ++l) {
+        const Index k = k0 + std::min<Index>(l, n - 1);
+        if (l < n) advance_deformation(k, vg, dt);
+        const Mat<2>& F = state_.F[order[k]];
+        polar.f00[l] = F(0, 0), polar.f10[l] = F(1, 0), polar.f01[l] = F(0, 1), polar.f11[l] = F(1, 1);
+      }
+      const unsigned polar_by_point = polar_log_lanes(polar);
+      PlaneStressLanes lanes;
+      for (int l = 0; l < kLawLanes; ++l) {
+        const PointHistory& hist = state_.history[order[k0 + std::min<Index>(l, n - 1)]];
+        lanes.l00[l] = polar.l00[l], lanes.l01[l] = polar.l01[l], lanes.l11[l] = polar.l11[l];
+        lanes.c[l] = polar.c[l], lanes.s[l] = polar.s[l];
+        set_plastic_lane(lanes, l, hist.plastic_strain, elastic_only);
+        const Index p = order[k0 + std::min<Index>(l, n - 1)];
+        lanes.alpha[l] = hist.eq_plastic_strain + (state_.eq_plastic_hardening[p] - hist.eq_plastic_strain);
+      }
+      const unsigned law_by_point = plane_stress_lanes(law, lanes);
+      for (int l = 0; l < n; ++l) {
+        const Index p = order[k0 + l];
+        if (state_.failed[p]) continue;  // a failed particle carries no stress
+        if (polar_by_point >> l & 1u || law_by_point >> l & 1u) {
+          PolarLog<2> pl;
+          if (polar_by_point >> l & 1u) {
+            try {
+              pl = polar_log<2>(state_.F[p]);
+            } catch (const RunError&) {
+              bad = std::min(bad, p);
+              continue;
+            }
+          } else {
+            pl.R << polar.c[l], -polar.s[l], polar.s[l], polar.c[l];
+            pl.log_U << polar.l00[l], polar.l01[l], polar.l01[l], polar.l11[l];
+          }
+          if (!apply_law(p, &pl)) bad = std::min(bad, p);
+          continue;
+        }
+        StressResult r;
+        r.kirchhoff(0, 0) = lanes.k00[l], r.kirchhoff(0, 1) = lanes.k01[l];
+        r.kirchhoff(1, 0) = lanes.k10[l], r.kirchhoff(1, 1) = lanes.k11[l];
+        r.J = lanes.J[l];
+        r.out_of_plane_strain = lanes.out_of_plane[l];
+        r.energy = lanes.energy[l];
+        const double alpha_before = state_.history[p].eq_plastic_strain;
+        store_law_result(p, r, alpha_before, state_.eq_plastic_hardening[p] - alpha_before);
+      }
+    }
+  } else {
+    (void)vg, (void)dt, (void)law, (void)bad;
+  }
+}
+
+// The law of particle p (from polar, its polar decomposition, for the log-strain laws;
+// else from F), stored with store_law_result; false if the return map failed.
+template <int D>
+bool Simulation<D>::apply_law(Index p, const PolarLog<D>* polar) {
+  PointHistory& hist = state_.history[p];
+  const double alpha_before = hist.eq_plastic_strain;
+  const double offset = state_.eq_plastic_hardening[p] - alpha_before;
+  StressResult r;
+  try {
+    r = polar ? constitutive_.update(*polar, hist, offset) : constitutive_.update(state_.F[p], hist, offset);
+  } catch (const RunError&) {
+    return false;
+  }
+  store_law_result(p, r, alpha_before, offset);
+  return true;
+}
+
+// The law's result r into particle p's state, then the ductile criterion (ε̄_p was
+// alpha_before before the update; offset = ε̂_p − ε̄_p of the non-local hardening).
+template <int D>
+void Simulation<D>::store_law_result(Index p, const StressResult& r, double alpha_before, double offset) {
+  state_.kirchhoff[p] = r.kirchhoff;
+  state_.J[p] = r.J;
+  state_.out_of_plane_strain[p] = r.out_of_plane_strain;
+  state_.energy[p] = r.energy;
+  state_.dissipation[p] += r.dissipation;
+  const core::DuctileFailure& fail = settings_.failure;
+  if (!fail.enabled) return;
+  const double eps_p = state_.history[p].eq_plastic_strain;
+  const double eps_f = fracture_strain(fail.d0, fail.c, mpm::triaxiality(state_.cauchy(p)));
+  bool broke = false;
+  if (fail.rule == core::FailureRule::strain) {
+    broke = eps_p + offset >= eps_f;
+  } else {
+    state_.damage[p] += (eps_p - alpha_before) / eps_f;
+    broke = state_.damage[p] >= 1.0;
+  }
+  if (broke) {
+    state_.failed[p] = 1;
+    failed_this_step_[p] = 1;
+    state_.kirchhoff[p].setZero();
+    state_.energy[p] = 0.0;
+  }
 }
 
 // polar_ of the active particles in schedule order; bad = the lowest inverted
@@ -708,7 +803,6 @@ void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
   state_.history[p] = h;
   state_.kirchhoff[p] = r.kirchhoff;
   state_.J[p] = r.J;
-  state_.stress[p] = r.kirchhoff / r.J;
   state_.energy[p] = r.energy;
   state_.out_of_plane_strain[p] = r.out_of_plane_strain;
 }
@@ -771,12 +865,12 @@ double Simulation<D>::total_mass() const {
 
 template <int D>
 double Simulation<D>::von_mises(Index p) const {
-  return mpm::von_mises(state_.stress[p]);
+  return mpm::von_mises(state_.cauchy(p));
 }
 
 template <int D>
 double Simulation<D>::triaxiality(Index p) const {
-  return mpm::triaxiality(state_.stress[p]);
+  return mpm::triaxiality(state_.cauchy(p));
 }
 
 template class Simulation<1>;

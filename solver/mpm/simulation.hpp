@@ -135,6 +135,11 @@ class Simulation {
   void fold_grid(Scatter what);   // fold it across symmetry planes afterwards
   void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
+  void update_stress_in_lanes(const std::vector<Vec<D>>& grid_velocity, double dt, const PlaneStressLaw& law,
+                              Index& bad);
+  void advance_deformation(Index k, const std::vector<Vec<D>>& grid_velocity, double dt);
+  bool apply_law(Index p, const PolarLog<D>* polar);
+  void store_law_result(Index p, const StressResult& r, double alpha_before, double offset);
   void update_nonlocal();
   Vec<D> external_force(Index p, double t) const;
   // stencil_ (polar_) of the active particles in schedule order; bad = the lowest particle

@@ -112,7 +112,7 @@ void MpmRun<D>::frame(std::int64_t step, double t) {
   if (wants("stress")) {
     std::vector<double> flat(static_cast<std::size_t>(n) * 6);
     for (Index i = 0; i < n; ++i) {
-      const Mat<3>& s = sim_.state().stress[i];
+      const Mat<3> s = sim_.state().cauchy(i);
       const double c[6] = {s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(1, 2), s(0, 2)};  // xx yy zz xy yz xz
       std::copy(c, c + 6, flat.begin() + 6 * i);
     }

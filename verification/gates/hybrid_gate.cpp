@@ -160,7 +160,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
   for (Index i = 0; i < p.n_real; ++i)
     if ((p.x0[i] - Vec<2>(0.015, 0.0075)).norm() < 0.6e-3) probe = i;
   ASSERT_GE(probe, 0);
-  const Mat<3> stress0 = body.mpm->state().stress[probe];
+  const Mat<3> stress0 = body.mpm->state().cauchy(probe);
   const mpm::PointHistory h0 = body.mpm->state().history[probe];
   ASSERT_GT(h0.eq_plastic_strain, 1e-3) << "the block must have yielded";
 
@@ -174,7 +174,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
   ASSERT_TRUE(Fpd.has_value());
   EXPECT_LT((*Fpd - F).norm(), 1e-12) << "F from bonds is exact for an affine motion";
 
-  const double stress_change = (body.mpm->state().stress[probe] - stress0).norm() / stress0.norm();
+  const double stress_change = (body.mpm->state().cauchy(probe) - stress0).norm() / stress0.norm();
   test::record_gate(Gate{.id = "hybrid.conversion.stress",
                          .claim = "a homogeneously stretched, yielded block (ε̄_p = 1.9e-3) converted MPM → PD → MPM "
                                   "shall keep its stress within 1 % (interior particle)",
@@ -563,7 +563,7 @@ GhostForces ghost_forces(const Mat<2>& H, bool with_pd) {
     if (with_pd && (p.x0[i] - centre).norm() < 7e-3) disc.push_back(i);
   }
   body.hybrid->start(disc);
-  const double a_scale = body.mpm->state().stress[0].norm() / (kRho * kDx);
+  const double a_scale = body.mpm->state().cauchy(0).norm() / (kRho * kDx);
   const double dt = 1e-13;
   body.hybrid->step(dt);
   for (Index i = 0; i < p.n_real; ++i) {

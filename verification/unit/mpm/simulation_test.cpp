@@ -45,7 +45,7 @@ std::vector<Vec<2>> run_plate(int threads, ShapeFunction shape, UpdateScheme sch
   for (Index p = 0; p < particles.n_real; ++p) {
     out.push_back(particles.u[p]);
     out.push_back(particles.v[p]);
-    out.push_back(Vec<2>(sim.state().stress[p](0, 0), sim.state().history[p].eq_plastic_strain));
+    out.push_back(Vec<2>(sim.state().cauchy(p)(0, 0), sim.state().history[p].eq_plastic_strain));
   }
   return out;
 }
@@ -56,9 +56,9 @@ TEST(MpmSimulation, BitIdenticalForAnyThreadCount) {
     UpdateScheme scheme;
     bool nonlocal;
   };
-  for (const Case c : {Case{ShapeFunction::linear, UpdateScheme::usf, false},
-                       Case{ShapeFunction::gimp, UpdateScheme::musl, true},
-                       Case{ShapeFunction::bspline2, UpdateScheme::usl, false}}) {
+  for (const Case c :
+       {Case{ShapeFunction::linear, UpdateScheme::usf, false}, Case{ShapeFunction::gimp, UpdateScheme::musl, true},
+        Case{ShapeFunction::bspline2, UpdateScheme::usl, false}}) {
     const auto a = run_plate(1, c.shape, c.scheme, c.nonlocal);
     const auto b = run_plate(2, c.shape, c.scheme, c.nonlocal);
     ASSERT_EQ(a.size(), b.size());
@@ -109,7 +109,7 @@ TEST(MpmSimulation, SymmetryPlaneEqualsMirroredFullModel) {
     const double L = 1.0, dx = 1.0 / 32;
     auto half = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(L, 0.25), dx);
     auto full = mu::box_particles<2>(Vec<2>(-L, 0), Vec<2>(L, 0.25), dx);
-    auto v0 = [](const Vec<2>& x) { // normal component odd, tangential even: the mirror extension
+    auto v0 = [](const Vec<2>& x) {  // normal component odd, tangential even: the mirror extension
       return Vec<2>(0.3 * std::sin(3.0 * x[0]) * (1 + x[1]), 0.2 * std::cos(2.0 * x[0]) * x[1]);
     };
     for (Index p = 0; p < half.n_real; ++p) half.v[p] = v0(half.x0[p]);
@@ -190,8 +190,10 @@ TEST(MpmSimulation, OnlyMpmAndTransitionParticlesMove) {
   Simulation<2> sim(s, particles);
   for (int n = 0; n < 5; ++n) sim.step();
   for (Index p = 0; p < particles.n_real; ++p) {
-    if (p % 3 == 0) EXPECT_EQ(particles.u[p].norm(), 0.0);
-    else EXPECT_GT(particles.u[p].norm(), 0.0);
+    if (p % 3 == 0)
+      EXPECT_EQ(particles.u[p].norm(), 0.0);
+    else
+      EXPECT_GT(particles.u[p].norm(), 0.0);
   }
 }
 
@@ -238,15 +240,19 @@ TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {
       damage += (a - alpha) / (d0 * std::exp(c * eta));
       alpha = a;
       // Not failed yet: the criterion must not be met.
-      if (rule == core::FailureRule::strain) EXPECT_LT(alpha, d0 * std::exp(c * eta));
-      else EXPECT_LT(damage, 1.0 + 1e-12);
+      if (rule == core::FailureRule::strain)
+        EXPECT_LT(alpha, d0 * std::exp(c * eta));
+      else
+        EXPECT_LT(damage, 1.0 + 1e-12);
     }
     ASSERT_GE(failed_at, 0) << name(rule);
     EXPECT_GT(eta, 0.05);  // the test exercises the exponent
     // It failed within one strain increment (≈ 1e-3, η changes by < 1e-3 per step).
-    if (rule == core::FailureRule::strain) EXPECT_GT(alpha + 1.5e-3, d0 * std::exp(c * eta));
-    else EXPECT_GT(damage + 1.5e-3 / (d0 * std::exp(c * eta)), 1.0);
-    EXPECT_EQ(sim.state().stress[p].norm(), 0.0);
+    if (rule == core::FailureRule::strain)
+      EXPECT_GT(alpha + 1.5e-3, d0 * std::exp(c * eta));
+    else
+      EXPECT_GT(damage + 1.5e-3 / (d0 * std::exp(c * eta)), 1.0);
+    EXPECT_EQ(sim.state().cauchy(p).norm(), 0.0);
     // Every particle sees the same homogeneous state, so all fail in that step.
     for (Index q = 0; q < particles.n_real; ++q) EXPECT_TRUE(sim.failed(q));
     EXPECT_EQ(static_cast<Index>(sim.newly_failed().size()), particles.n_real);
