@@ -12,6 +12,13 @@ struct RunArgs {
 };
 int run_command(const RunArgs& args);
 
+struct CheckArgs {
+  std::string scene;
+  int threads = 0;
+  double calibration_seconds = 1.0;  // steps timed for the estimate; 0: validate and describe only
+};
+int check_command(const CheckArgs& args);
+
 struct ConstantsArgs {
   double E = 200e9, nu = 0.25, delta = 3.015e-3, thickness = 1e-3, area = 1e-6, G0 = 0.0;
   std::string format = "table";

@@ -19,14 +19,28 @@ int main(int argc, char** argv) {
   cmd_run->add_flag("--quiet,-q", run.quiet, "No progress output");
   cmd_run->add_flag("--no-fields", run.no_fields, "Skip fields.h5/.xdmf (history and summary only)");
 
+  pdmpm::app::CheckArgs check;
+  auto* cmd_check = app.add_subcommand(
+      "check",
+      "Validate a scene and print what a run would be: method, particles, bonds, memory, steps, and the "
+      "wall time estimated from a few calibration steps (nothing written)");
+  cmd_check->add_option("scene", check.scene, "Scene file (TOML)")->required();
+  cmd_check->add_option("--threads,-t", check.threads, "OpenMP threads (default: all)")->check(CLI::Range(1, 1024));
+  cmd_check
+      ->add_option("--calibration-seconds", check.calibration_seconds,
+                   "About how long to time steps for the estimate (default 1; 0: validate and describe only)")
+      ->check(CLI::Range(0.0, 3600.0));
+
   pdmpm::app::ConstantsArgs cst;
-  auto* cmd_const = app.add_subcommand("constants", "Print the bond constants of docs/models/pmb.md and docs/models/lps.md for a material and horizon");
+  auto* cmd_const = app.add_subcommand(
+      "constants", "Print the bond constants of docs/models/pmb.md and docs/models/lps.md for a material and horizon");
   cmd_const->add_option("--E", cst.E, "Young's modulus (Pa)")->check(CLI::PositiveNumber);
   cmd_const->add_option("--nu", cst.nu, "Poisson's ratio")->check(CLI::Range(-0.999, 0.4999));
   cmd_const->add_option("--delta", cst.delta, "Horizon δ (m)")->check(CLI::PositiveNumber);
   cmd_const->add_option("--thickness", cst.thickness, "Plate thickness h for 2D (m)")->check(CLI::PositiveNumber);
   cmd_const->add_option("--area", cst.area, "Bar cross-section A for 1D (m²)")->check(CLI::PositiveNumber);
-  cmd_const->add_option("--G0", cst.G0, "Fracture energy G₀ for the critical stretch (J/m²)")->check(CLI::PositiveNumber);
+  cmd_const->add_option("--G0", cst.G0, "Fracture energy G₀ for the critical stretch (J/m²)")
+      ->check(CLI::PositiveNumber);
   cmd_const->add_option("--format", cst.format, "Output format")->check(CLI::IsMember({"table", "json"}));
 
   try {
@@ -35,6 +49,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (*cmd_run) return pdmpm::app::run_command(run);
+  if (*cmd_check) return pdmpm::app::check_command(check);
   if (*cmd_const) return pdmpm::app::constants_command(cst);
   return 2;
 }

@@ -1,0 +1,130 @@
+// `pdmpm check SCENE`: what a run of the scene would be and cost, without running it.
+// The scene is validated and built exactly as `pdmpm run` builds it (same errors, same
+// exit status 2), then advanced a few steps in a scratch directory that is deleted
+// afterwards — the calibration — and the run's wall time extrapolated from those
+// steps. Users trade resolution for time before they spend it.
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <iostream>
+
+#include "solver/app/commands.hpp"
+#include "solver/core/error.hpp"
+#include "solver/io/scene.hpp"
+#include "solver/sim/output_schedule.hpp"
+#include "solver/sim/run.hpp"
+
+namespace pdmpm::app {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A scratch directory removed when it goes out of scope, whatever happens.
+struct ScratchDirectory {
+  fs::path path = fs::temp_directory_path() / fmt::format("pdmpm-check-{}", ::getpid());
+  ~ScratchDirectory() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+std::string human_seconds(double s) {
+  if (s < 120.0) return fmt::format("{:.3g} s", s);
+  if (s < 7200.0) return fmt::format("{:.3g} min", s / 60.0);
+  return fmt::format("{:.3g} h", s / 3600.0);
+}
+
+std::string human_bytes(double b) {
+  if (b < 1e6) return fmt::format("{:.3g} kB", b / 1e3);
+  if (b < 1e9) return fmt::format("{:.3g} MB", b / 1e6);
+  return fmt::format("{:.3g} GB", b / 1e9);
+}
+
+// The scene advanced `steps` steps (0: built only) in scratch, without fields: its
+// summary, and the seconds the call took (building included).
+struct Trial {
+  nlohmann::json summary;
+  double seconds = 0.0;
+};
+Trial trial_run(const io::Scene& scene, std::int64_t steps, int threads, const fs::path& out) {
+  io::Scene trial = scene;
+  trial.time.steps = steps;
+  trial.time.end_time.reset();
+  sim::RunOptions opt;
+  opt.out_dir = out;
+  opt.threads = threads;
+  opt.progress = false;
+  opt.write_fields = false;
+  const auto t0 = std::chrono::steady_clock::now();
+  const sim::RunResult r = sim::run_scene(trial, opt);
+  if (r.exit_code != 0) throw RunError(r.message);
+  return {r.summary, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()};
+}
+
+void describe(const io::Scene& scene, const nlohmann::json& s) {
+  fmt::print("{} ({}): valid\n", scene.id, scene.file);
+  const std::string solver = s.value("solver", std::string("pd")), model = s.value("model", scene.model);
+  fmt::print("  method      {}{}, {}D{}\n", solver, model == solver ? "" : ", model " + model, scene.dimension,
+             scene.dimension == 2 && s.contains("setting") ? ", " + s["setting"].get<std::string>() : "");
+  std::string body = fmt::format("{} particles", s.value("particles", 0L));
+  if (s.contains("bonds")) body += fmt::format(", {} bond sides", s["bonds"].get<long>());
+  if (s.contains("grid_nodes")) body += fmt::format(", {} grid nodes", s["grid_nodes"].get<long>());
+  fmt::print("  body        {}\n", body);
+}
+
+}  // namespace
+
+int check_command(const CheckArgs& args) {
+  try {
+    const io::Scene scene = io::parse_scene(args.scene);
+    ScratchDirectory scratch;
+    const bool quasi_static = scene.time.integrator == io::Integrator::adr;
+    const bool calibrate = !quasi_static && args.calibration_seconds > 0.0;
+    // First trial: built, and a few steps when calibrating (their wall time sizes the second).
+    const std::int64_t n1 = calibrate ? std::min<std::int64_t>(10, scene.time.steps.value_or(10)) : 0;
+    const Trial first = trial_run(scene, n1, args.threads, scratch.path / "first");
+    const nlohmann::json& s = first.summary;
+    describe(scene, s);
+    fmt::print("  memory      {} peak (the process, built{})\n", human_bytes(s.value("peak_memory_bytes", 0.0)),
+               n1 > 0 ? fmt::format(" and {} steps run", n1) : "");
+    if (quasi_static) {
+      fmt::print(
+          "  time        quasi-static (adaptive dynamic relaxation): {} load steps of at most {} iterations;\n"
+          "              no wall-time estimate, the iterations depend on convergence\n",
+          scene.time.load_steps, scene.time.max_steps);
+      return 0;
+    }
+    const sim::StepPlan plan = sim::plan_steps(scene.time, s.value("dt", 0.0));
+    fmt::print("  time        dt = {:.4g} s, {} steps to t = {:.4g} s\n", plan.dt, plan.steps, plan.end_time);
+    if (!calibrate || plan.steps <= n1) return 0;
+    // Second trial: about calibration_seconds of steps more; the difference is the
+    // cost of a step without the building and the run's start.
+    const double rough = std::max(first.summary.value("wall_time_s", 0.0) / static_cast<double>(n1), 1e-9);
+    const std::int64_t more =
+        std::clamp<std::int64_t>(static_cast<std::int64_t>(args.calibration_seconds / rough), n1, plan.steps - n1);
+    const Trial second = trial_run(scene, n1 + more, args.threads, scratch.path / "second");
+    const double per_step = std::max(0.0, (second.seconds - first.seconds) / static_cast<double>(more));
+    const double fixed = std::max(0.0, first.seconds - per_step * static_cast<double>(n1));
+    const int threads = s.value("threads", 0);
+    fmt::print("  cost        {:.3g} ms per step on {} thread{} (timed over {} steps), {} to build and start\n",
+               1e3 * per_step, threads, threads == 1 ? "" : "s", more, human_seconds(fixed));
+    fmt::print("  estimate    about {} for the run, without field output{}\n",
+               human_seconds(fixed + per_step * static_cast<double>(plan.steps)),
+               scene.method == io::Method::hybrid ? " (PD regions born later make it longer)" : "");
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "pdmpm: error: " << e.what() << "\n";
+    return 2;
+  } catch (const RunError& e) {
+    std::cerr << "pdmpm: the scene is valid, but its calibration steps failed: " << e.what() << "\n";
+    return 3;
+  } catch (const std::exception& e) {
+    std::cerr << "pdmpm: internal error: " << e.what() << "\n";
+    return 4;
+  }
+}
+
+}  // namespace pdmpm::app
