@@ -4,8 +4,8 @@
     /usr/bin/python3 reports/make_report.py [--results build/results] [--out build/report/index.html]
 
 Reads <results>/gates/*.json, <results>/data/<problem>/*.json, <results>/provenance.json,
-<results>/bench/*.json, the problem descriptions in reports/problems/*.toml and the
-bibliography docs/references.md (every gate's source cites a work by its [key]).
+<results>/bench/*.json, the problem descriptions in reports/problems/*.toml, the papers'
+claims in reports/claims.toml (shown first) and the bibliography docs/references.md (every gate's source cites a work by its [key]).
 The page is written in every case (bad or missing input is marked on it).
 Exit status: 0 all gates pass and nothing is malformed or missing; 1 a gate failed or
 something is malformed/missing (or the page could not be written); 2 bad command line.
@@ -21,7 +21,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 sys.path.insert(0, str(HERE))
 
-from pdreport import load, render  # noqa: E402
+from pdreport import claims, load, render  # noqa: E402
 
 
 def parse_args(argv):
@@ -36,6 +36,8 @@ def parse_args(argv):
                         help="problem descriptions, <problem>.toml (default: reports/problems)")
     parser.add_argument("--references", type=Path, default=HERE.parent / "docs" / "references.md", metavar="FILE",
                         help="bibliography every gate source cites by [key] (default: docs/references.md)")
+    parser.add_argument("--claims", type=Path, default=HERE / "claims.toml", metavar="FILE",
+                        help="published claims shown first, each judged by a gate (default: reports/claims.toml)")
     parser.add_argument("--allow-missing", action="store_true",
                         help="MISSING items are shown but do not make the exit status 1 "
                              "(for partial runs, e.g. the fast tier); FAIL and MALFORMED still do")
@@ -58,6 +60,7 @@ def main(argv=None) -> int:
     args = parse_args(argv)
     try:
         results = load.load_results(args.results, args.problems, args.references)
+        results.claims = claims.load_claims(args.claims, results)
         render.render_plots(results)
         summary = render.summary(results, allow_missing=args.allow_missing)
         page = render.render_page(results, summary, args.problems)

@@ -143,6 +143,7 @@ class Results:
     bench: list[BenchFile] = field(default_factory=list)
     issues: list[Issue] = field(default_factory=list)
     references: dict[str, Reference] = field(default_factory=dict)  # the bibliography, by key
+    claims: list = field(default_factory=list)  # the published claims (claims.py), judged
 
     def cited(self) -> list[Reference]:
         """The works the page cites (gate sources, problem texts), in bibliography order."""
@@ -151,6 +152,7 @@ class Results:
             keys.update(cited_keys(g.source, self.references))
         for p in self.problems:
             keys.update(cited_keys(p.summary + " ".join(p.equations), self.references))
+        keys.update(c.paper for c in self.claims)
         return [ref for key, ref in self.references.items() if key in keys]
 
     def count(self, status: str) -> int:

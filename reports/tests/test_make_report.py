@@ -42,6 +42,8 @@ class ReportTestCase(unittest.TestCase):
 
     def run_report(self, *extra, results=None):
         refs = [] if "--references" in extra else ["--references", str(FIXTURES / "references.md")]
+        if "--claims" not in extra:
+            refs += ["--claims", str(FIXTURES / "claims.toml")]
         args = [sys.executable, str(SCRIPT), "--results", str(results or self.results),
                 "--problems", str(self.problems), "--out", str(self.out), *refs, *extra]
         proc = subprocess.run(args, capture_output=True, text=True, timeout=120)
@@ -86,6 +88,50 @@ class GoodInputs(ReportTestCase):
         self.assertNotIn('class="badge MISSING"', page)
         self.assertGreaterEqual(page.count("data:image/png;base64,"), 3)   # two plots and one image
         self.assert_self_contained(page)
+
+    def test_the_papers_claims_come_first_with_their_verdicts(self):
+        proc, page = self.run_report()
+        self.assertEqual(proc.returncode, 0, proc.stderr)
+        self.assertLess(page.index('id="claims"'), page.index('id="gates"'))
+        claims = page[page.index('id="claims"'):page.index('id="gates"')]
+        self.assertIn("1.509e+19 N/m⁶", claims)               # the gate's measured value, formatted
+        self.assertIn('verdict reproduced">reproduced', claims)
+        self.assertIn('verdict deviation-explained">deviation explained', claims)
+        self.assertIn("The fixture bar is linear", claims)
+        self.assertIn('verdict not-measured">not measured', claims)
+        self.assertIn('href="#ref-deryugin2023"', claims)
+        self.assertIn('href="#p-fixture_constants"', claims)
+
+    def test_a_failed_gate_makes_its_claim_failed(self):
+        self.edit_json(self.gate_path("fixture.constants.pmb3d_closed_form"), measured=2e19)
+        _, page = self.run_report()
+        claims = page[page.index('id="claims"'):page.index('id="gates"')]
+        self.assertIn('verdict failed">failed', claims)
+
+    def test_a_claim_of_a_gate_another_command_records_is_not_run_here(self):
+        path = self.problems / "fixture_constants.toml"
+        path.write_text(path.read_text() + '\n[recorded_by]\n"fixture.constants.pmb3d_closed_form" = "the full tier"\n')
+        self.gate_path("fixture.constants.pmb3d_closed_form").unlink()
+        _, page = self.run_report()
+        claims = page[page.index('id="claims"'):page.index('id="gates"')]
+        self.assertIn('verdict not-run-here">not run here', claims)
+
+    def test_malformed_claims_are_an_issue_not_a_crash(self):
+        claims = self.tmp / "claims.toml"
+        for text, fragment in (('[[claim]]\npaper = "deryugin2023"\n', "'where' must be a non-empty string"),
+                               ('[[claim]]\npaper = "x"\nwhere = "a"\nquantity = "q"\npaper_value = "1"\nmood = 2\n',
+                                "unknown key(s) ['mood']"),
+                               ('[[claim]]\npaper = "nokey"\nwhere = "a"\nquantity = "q"\npaper_value = "1"\n',
+                                "unknown paper key [nokey]"),
+                               ('[[claim]]\npaper = "silling2000"\nwhere = "a"\nquantity = "q"\npaper_value = "1"\n'
+                                'ours = "{:.2q}"\n', "'ours' is not a format"),
+                               ("[[claim\n", "")):
+            claims.write_text(text, encoding="utf-8")
+            proc, page = self.run_report("--claims", str(claims))
+            self.assertEqual(proc.returncode, 1, text)
+            self.assertIn("MALFORMED", proc.stderr, text)
+            self.assertIn(fragment, proc.stderr, text)
+            self.assertIn('id="gates"', page)  # the rest of the page is still there
 
     def test_gate_table_comes_before_the_problem_sections(self):
         _, page = self.run_report()
