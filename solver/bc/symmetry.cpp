@@ -1,6 +1,10 @@
 #include "solver/bc/symmetry.hpp"
 
+#include <fmt/format.h>
+
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <set>
 
 #include "solver/core/error.hpp"
@@ -21,6 +25,20 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
       throw InputError(file, plane.key + ".position",
                        "a symmetry plane must pass through lattice sites or midway between them "
                        "(position = origin + k Δx/2)");
+    // The plane must touch the body (within the family reach of a particle): one
+    // farther away mirrors nothing, and its site coordinate may not fit an integer.
+    const auto reach_sites = static_cast<std::int32_t>(std::floor(reach / dx * (1.0 + 1e-10)));
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (Index i = 0; i < p.n_real; ++i) {
+      lo = std::min<double>(lo, p.site[i][a]);
+      hi = std::max<double>(hi, p.site[i][a]);
+    }
+    if (!(rounded >= 2.0 * (lo - reach_sites) && rounded <= 2.0 * (hi + reach_sites)))
+      throw InputError(file, plane.key + ".position",
+                       fmt::format("the plane at {} m lies beyond the body's reach; a symmetry plane must touch the "
+                                   "body (between {} and {} m on this axis)",
+                                   plane.position, p.lattice.origin[a] + (lo - reach_sites) * dx,
+                                   p.lattice.origin[a] + (hi + reach_sites) * dx));
     const auto two_p = static_cast<std::int32_t>(rounded);
     bool below = false, above = false;
     for (Index i = 0; i < p.n_real; ++i) {
@@ -29,7 +47,6 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
     }
     if (below && above)
       throw InputError(file, plane.key, "the body lies on both sides of this symmetry plane; keep only one half");
-    const auto reach_sites = static_cast<std::int32_t>(std::floor(reach / dx * (1.0 + 1e-10)));
 
     std::set<std::vector<std::int32_t>> occupied;
     for (const auto& s : p.site) occupied.insert(std::vector<std::int32_t>(s.data(), s.data() + D));
@@ -37,7 +54,7 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
     for (Index i = 0; i < existing; ++i) {
       IVec<D> m = p.site[i];
       m[a] = two_p - m[a];
-      if (m[a] == p.site[i][a]) continue;                      // on the plane: its own mirror
+      if (m[a] == p.site[i][a]) continue;                                  // on the plane: its own mirror
       if (std::abs(2 * p.site[i][a] - two_p) > 2 * reach_sites) continue;  // too far to be in a family
       std::vector<std::int32_t> key(m.data(), m.data() + D);
       if (occupied.count(key)) continue;
@@ -53,8 +70,11 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
   }
 }
 
-template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double, const std::string&);
-template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double, const std::string&);
-template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double, const std::string&);
+template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double,
+                                     const std::string&);
+template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double,
+                                     const std::string&);
+template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double,
+                                     const std::string&);
 
 }  // namespace pdmpm::bc

@@ -1,6 +1,9 @@
 #include "solver/sim/geometry_from_scene.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
+#include <limits>
 
 #include "solver/core/error.hpp"
 #include "solver/core/particle_builder.hpp"
@@ -10,6 +13,16 @@ namespace pdmpm::sim {
 template <int D>
 core::Particles<D> fill_body(const io::Scene& s) {
   const auto geometry = make_geometry<D>(s.shapes);
+  // Particles are indexed by 32-bit integers (families store them per bond): a
+  // lattice that could hold more is refused before it is filled site by site.
+  double sites = 1.0;
+  const auto box = geometry.bounds();
+  for (int a = 0; a < D; ++a) sites *= std::ceil((box.max[a] - box.min[a]) / s.spacing) + 1.0;
+  if (!(sites <= static_cast<double>(std::numeric_limits<Index>::max())))
+    throw InputError(s.file, "discretization.spacing",
+                     fmt::format("{} m puts up to {:.3g} lattice sites in the shapes' bounding box; pdmpm indexes "
+                                 "particles with 32-bit integers (at most {}): use a larger spacing",
+                                 s.spacing, sites, std::numeric_limits<Index>::max()));
   const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
   auto particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
   if (particles.n_real == 0)

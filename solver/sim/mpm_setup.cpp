@@ -1,5 +1,7 @@
 #include "solver/sim/mpm_setup.hpp"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -131,6 +133,12 @@ MpmGridSettings<D> translate_mpm(const io::Scene& s) {
     else
       throw InputError(s.file, sym.key + ".position",
                        "the symmetry plane cuts the body: it must lie on a face of the body");
+    const double gap = g.side > 0 ? bounds.min[sym.axis] - sym.position : sym.position - bounds.max[sym.axis];
+    if (!(gap <= s.spacing))  // a plane off the body mirrors nothing
+      throw InputError(s.file, sym.key + ".position",
+                       fmt::format("the symmetry plane is {} m from the body: it must lie on a face of the body "
+                                   "(at {} or {} m on this axis)",
+                                   gap, bounds.min[sym.axis], bounds.max[sym.axis]));
     st.origin[sym.axis] = sym.position;
     st.boundaries.push_back(std::move(g));
     out.grid_bc_source.push_back(-1);
