@@ -18,6 +18,12 @@ packages=(
   lammps                   # independent PERI implementation to compare against
 )
 
+# Opt-in: ParaView (pvpython) and a virtual X server for the test that opens the
+# fields in ParaView (verification/unit/io/fields_writer_paraview_test.cpp, skipped without them).
+if [ "${PDMPM_WITH_PARAVIEW:-0}" = "1" ]; then
+  packages+=(paraview python3-paraview xvfb xauth)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
