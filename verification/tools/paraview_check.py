@@ -1,11 +1,11 @@
 """Opens a pdmpm fields.xdmf in ParaView as a user would and checks what it sees.
 
-    xvfb-run -a pvpython verification/tools/paraview_check.py FIELDS.xdmf FRAMES ARRAY[,ARRAY…] OUT.png
+    verification/tools/pvpython_headless.sh verification/tools/paraview_check.py FIELDS.xdmf FRAMES ARRAY[,ARRAY…] OUT.png
 
 Passes (exit 0, last line "paraview_check: OK …") when ParaView's XDMF reader finds FRAMES time
 steps and every named point array, the arrays of the last frame are finite, and a rendered image
 of the last frame colored by the first array is not blank. Anything else: exit 1 and the reason.
-Run by verification/unit/io/paraview_test.cpp (skipped when pvpython is absent).
+Run by verification/unit/io/fields_writer_paraview_test.cpp (skipped when pvpython is absent).
 """
 import math
 import sys
