@@ -7,6 +7,7 @@
 #include <regex>
 #include <string>
 
+#include "verification/support/broken_corpus.hpp"
 #include "verification/support/command_line.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
@@ -71,20 +72,12 @@ TEST(CliCheck, AQuasiStaticSceneGetsNoWallTimeEstimate) {
 
 // Every scene of the broken corpus: exit 2 and the message `pdmpm run` gives.
 TEST(CliCheck, EveryBrokenSceneFailsAsItsRunWould) {
-  const fs::path corpus = fs::path(PDMPM_SOURCE_DIR) / "verification/scenes/broken";
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(corpus)) {
-    if (entry.path().extension() != ".toml") continue;
+  for (const auto& scene : pdmpm::test::broken_corpus()) {
     ++count;
-    std::ifstream in(entry.path());
-    std::string first;
-    std::getline(in, first);
-    const std::string expect = first.substr(10);  // "# expect: key | fragment"
-    const auto bar = expect.find(" | ");
-    const std::string fragment = bar == std::string::npos ? expect : expect.substr(bar + 3);
-    const auto r = run_pdmpm("check " + entry.path().string() + " --calibration-seconds 0.05");
-    EXPECT_EQ(r.status, 2) << entry.path().filename() << ":\n" << r.output;
-    EXPECT_NE(r.output.find(fragment), std::string::npos) << entry.path().filename() << ":\n" << r.output;
+    const auto r = run_pdmpm("check " + scene.path.string() + " --calibration-seconds 0.05");
+    EXPECT_EQ(r.status, 2) << scene.path.filename() << ":\n" << r.output;
+    EXPECT_NE(r.output.find(scene.fragment), std::string::npos) << scene.path.filename() << ":\n" << r.output;
   }
   EXPECT_GE(count, 40);
 }

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "solver/pd/model.hpp"
+#include "verification/support/broken_corpus.hpp"
 #include "verification/support/command_line.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
@@ -23,31 +24,23 @@ namespace fs = std::filesystem;
 using pdmpm::test::run_pdmpm;
 
 TEST(Cli, EveryBrokenSceneIsRejectedCleanly) {
-  const fs::path corpus = fs::path(PDMPM_SOURCE_DIR) / "verification/scenes/broken";
   const pdmpm::test::ScratchDir scratch("cli_broken");
   int count = 0;
-  for (const auto& entry : fs::directory_iterator(corpus)) {
-    if (entry.path().extension() != ".toml") continue;
+  for (const auto& scene : pdmpm::test::broken_corpus()) {
     ++count;
-    std::ifstream in(entry.path());
-    std::string first;
-    std::getline(in, first);
-    ASSERT_EQ(first.rfind("# expect: ", 0), 0u) << entry.path();
-    const std::string expect = first.substr(10);
-    const auto bar = expect.find(" | ");
-    const std::string key = bar == std::string::npos ? "" : expect.substr(0, bar);
-    const std::string fragment = bar == std::string::npos ? expect : expect.substr(bar + 3);
-
-    const fs::path out = scratch.fresh(entry.path().stem().string());
-    const auto r = run_pdmpm("run " + entry.path().string() + " --out " + out.string() + " --quiet");
-    EXPECT_EQ(r.status, 2) << entry.path().filename() << ":\n" << r.output;
-    if (!key.empty()) {
-      EXPECT_NE(r.output.find("'" + key + "'"), std::string::npos) << entry.path().filename() << ":\n" << r.output;
+    const std::string name = scene.path.filename().string();
+    ASSERT_TRUE(scene.has_expectation) << scene.path << ": the first line must be '# expect: key | fragment'";
+    const fs::path out = scratch.fresh(scene.path.stem().string());
+    const auto r = run_pdmpm("run " + scene.path.string() + " --out " + out.string() + " --quiet");
+    EXPECT_EQ(r.status, 2) << name << ":\n" << r.output;
+    if (!scene.key.empty()) {
+      EXPECT_NE(r.output.find("'" + scene.key + "'"), std::string::npos) << name << ":\n" << r.output;
     }
-    EXPECT_NE(r.output.find(fragment), std::string::npos) << entry.path().filename() << ": wanted \"" << fragment << "\"\n" << r.output;
-    EXPECT_NE(r.output.find(entry.path().filename().string()), std::string::npos) << "message must name the file";
+    EXPECT_NE(r.output.find(scene.fragment), std::string::npos) << name << ": wanted \"" << scene.fragment << "\"\n"
+                                                                << r.output;
+    EXPECT_NE(r.output.find(name), std::string::npos) << "message must name the file";
     EXPECT_EQ(std::count(r.output.begin(), r.output.end(), '\n'), 1) << "one line:\n" << r.output;
-    EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out)) << "output left behind for " << entry.path().filename();
+    EXPECT_FALSE(fs::exists(out) && !fs::is_empty(out)) << "output left behind for " << name;
   }
   EXPECT_GE(count, 40);
 }
@@ -80,9 +73,9 @@ TEST(Cli, SmallScenesOfEachModelRun) {
           .model = model,
           .time = "steps = 20",
           .tables = "[[boundary]]\nkind = \"velocity\"\nvalue = [" +
-                    std::string(dim == 2 ? "\"1.0\", \"free\"" : "\"1.0\", \"free\", \"free\"") +
-                    "]\nregion = { type = \"box\", min = [" + (dim == 2 ? "0.0115, 0" : "0.0075, 0, 0") + "], max = [" +
-                    box + "] }\n"};
+              std::string(dim == 2 ? "\"1.0\", \"free\"" : "\"1.0\", \"free\", \"free\"") +
+              "]\nregion = { type = \"box\", min = [" + (dim == 2 ? "0.0115, 0" : "0.0075, 0, 0") + "], max = [" + box +
+              "] }\n"};
       const pdmpm::test::ScratchDir scratch("cli_tiny_" + model + std::to_string(dim));
       const fs::path dir = scratch.path();
       const fs::path scene = dir / "scene.toml";
