@@ -163,14 +163,14 @@ std::vector<CrackTip<D>> find_crack_tips(const core::Lattice<D>& lattice, const 
   });
   const double merge2 = s.merge_radius * s.merge_radius;
   std::vector<CrackTip<D>> tips;
-  for (const auto& [i, ahead] : candidates) {
+  for (const auto& [i, toward_intact] : candidates) {
     const bool near = std::any_of(tips.begin(), tips.end(), [&](const CrackTip<D>& t) {
       return static_cast<double>((t.site - sites[i]).squaredNorm()) <= merge2;
     });
     if (near) continue;
     // Vertex of the parabola through ∇²φ at the site and its two neighbours per
     // axis (within ±½: the site is a minimum), then tip_offset towards the intact side.
-    Vec<D> x = sites[i].template cast<double>() + s.tip_offset * ahead;
+    Vec<D> x = sites[i].template cast<double>() + s.tip_offset * toward_intact;
     for (int a = 0; a < D; ++a) {
       const Index p = mirrored<D>(map, sites[i], IVec<D>::Unit(a)), m = mirrored<D>(map, sites[i], -IVec<D>::Unit(a));
       if (p < 0) continue;

@@ -146,7 +146,9 @@ TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses) {
     EXPECT_TRUE(r.status == 0 || r.status == 2 || r.status == 3) << label << ": run exit " << r.status << "\n"
                                                                  << r.output;
     EXPECT_EQ(r.output.find("internal error"), std::string::npos) << label << "\n" << r.output;
-    if (r.status == 2) EXPECT_FALSE(fs::exists(out)) << label << ": output written on bad input";
+    if (r.status == 2) {
+      EXPECT_FALSE(fs::exists(out)) << label << ": output written on bad input";
+    }
   }
   // The mix must exercise both answers, or the mutations are too weak or too strong.
   EXPECT_GT(valid, kMutations / 20);
