@@ -13,6 +13,7 @@
 
 #include "solver/app/commands.hpp"
 #include "solver/core/error.hpp"
+#include "solver/io/progress.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run.hpp"
@@ -30,18 +31,6 @@ struct ScratchDirectory {
     fs::remove_all(path, ec);
   }
 };
-
-std::string human_seconds(double s) {
-  if (s < 120.0) return fmt::format("{:.3g} s", s);
-  if (s < 7200.0) return fmt::format("{:.3g} min", s / 60.0);
-  return fmt::format("{:.3g} h", s / 3600.0);
-}
-
-std::string human_bytes(double b) {
-  if (b < 1e6) return fmt::format("{:.3g} kB", b / 1e3);
-  if (b < 1e9) return fmt::format("{:.3g} MB", b / 1e6);
-  return fmt::format("{:.3g} GB", b / 1e9);
-}
 
 // The scene advanced `steps` steps (0: built only) in scratch, without fields: its
 // summary, and the seconds the call took (building included).
@@ -88,7 +77,8 @@ int check_command(const CheckArgs& args) {
     const Trial first = trial_run(scene, n1, args.threads, scratch.path / "first");
     const nlohmann::json& s = first.summary;
     describe(scene, s);
-    fmt::print("  memory      {} peak (the process, built{})\n", human_bytes(s.value("peak_memory_bytes", 0.0)),
+    fmt::print("  memory      {} peak (the process, built{})\n",
+               io::format_engineering(s.value("peak_memory_bytes", 0.0), "B"),
                n1 > 0 ? fmt::format(" and {} steps run", n1) : "");
     if (quasi_static) {
       fmt::print(
@@ -109,10 +99,11 @@ int check_command(const CheckArgs& args) {
     const double per_step = std::max(0.0, (second.seconds - first.seconds) / static_cast<double>(more));
     const double fixed = std::max(0.0, first.seconds - per_step * static_cast<double>(n1));
     const int threads = s.value("threads", 0);
-    fmt::print("  cost        {:.3g} ms per step on {} thread{} (timed over {} steps), {} to build and start\n",
-               1e3 * per_step, threads, threads == 1 ? "" : "s", more, human_seconds(fixed));
+    fmt::print("  cost        {} per step on {} thread{} (timed over {} steps), {} to build and start\n",
+               io::format_engineering(per_step, "s"), threads, threads == 1 ? "" : "s", more,
+               io::format_engineering(fixed, "s"));
     fmt::print("  estimate    about {} for the run, without field output{}\n",
-               human_seconds(fixed + per_step * static_cast<double>(plan.steps)),
+               io::format_duration(fixed + per_step * static_cast<double>(plan.steps)),
                scene.method == io::Method::hybrid ? " (PD regions born later make it longer)" : "");
     return 0;
   } catch (const InputError& e) {

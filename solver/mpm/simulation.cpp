@@ -448,11 +448,11 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       const unsigned polar_by_point = polar_log_lanes(polar);
       PlaneStressLanes lanes;
       for (int l = 0; l < kLawLanes; ++l) {
-        const PointHistory& hist = state_.history[order[k0 + std::min<Index>(l, n - 1)]];
+        const Index p = order[k0 + std::min<Index>(l, n - 1)];
+        const PointHistory& hist = state_.history[p];
         lanes.l00[l] = polar.l00[l], lanes.l01[l] = polar.l01[l], lanes.l11[l] = polar.l11[l];
         lanes.c[l] = polar.c[l], lanes.s[l] = polar.s[l];
         set_plastic_lane(lanes, l, hist.plastic_strain, elastic_only);
-        const Index p = order[k0 + std::min<Index>(l, n - 1)];
         lanes.alpha[l] = hist.eq_plastic_strain + (state_.eq_plastic_hardening[p] - hist.eq_plastic_strain);
       }
       const unsigned law_by_point = plane_stress_lanes(law, lanes);
