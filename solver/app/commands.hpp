@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands of pdmpm. Each returns the process exit status:
-// 0 success, 2 bad input (nothing written), 3 run failed (unstable, not converged).
+// 0 success, 2 bad input (nothing written), 3 run failed (unstable, not converged),
+// 4 internal error, 5 interrupted by SIGINT/SIGTERM (checkpoint written where the run has one).
 #include <string>
 
 namespace pdmpm::app {
@@ -9,8 +10,17 @@ struct RunArgs {
   std::string scene, out;
   int threads = 0;
   bool quiet = false, no_fields = false;
+  std::string checkpoint_every;  // steps ("5000") or wall time ("30m"); empty: none
 };
 int run_command(const RunArgs& args);
+
+struct ResumeArgs {
+  std::string dir;
+  int threads = 0;
+  bool quiet = false;
+  std::string checkpoint_every;
+};
+int resume_command(const ResumeArgs& args);
 
 struct CheckArgs {
   std::string scene;

@@ -18,6 +18,18 @@ int main(int argc, char** argv) {
   cmd_run->add_option("--threads,-t", run.threads, "OpenMP threads (default: all)")->check(CLI::Range(1, 1024));
   cmd_run->add_flag("--quiet,-q", run.quiet, "No progress output");
   cmd_run->add_flag("--no-fields", run.no_fields, "Skip fields.h5/.xdmf (history and summary only)");
+  cmd_run->add_option("--checkpoint-every", run.checkpoint_every,
+                      "Write DIR/checkpoint.pdmpm every N steps (\"5000\") or wall time (\"90s\", \"30m\", \"2h\"); "
+                      "SIGINT/SIGTERM always write one and exit with status 5");
+
+  pdmpm::app::ResumeArgs resume;
+  auto* cmd_resume = app.add_subcommand(
+      "resume", "Continue an interrupted run from DIR/checkpoint.pdmpm; the outputs are those of an uninterrupted run");
+  cmd_resume->add_option("dir", resume.dir, "Output directory of the interrupted run")->required();
+  cmd_resume->add_option("--threads,-t", resume.threads, "OpenMP threads (default: all; results do not depend on it)")
+      ->check(CLI::Range(1, 1024));
+  cmd_resume->add_flag("--quiet,-q", resume.quiet, "No progress output");
+  cmd_resume->add_option("--checkpoint-every", resume.checkpoint_every, "As for run");
 
   pdmpm::app::CheckArgs check;
   auto* cmd_check = app.add_subcommand(
@@ -49,6 +61,7 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
   if (*cmd_run) return pdmpm::app::run_command(run);
+  if (*cmd_resume) return pdmpm::app::resume_command(resume);
   if (*cmd_check) return pdmpm::app::check_command(check);
   if (*cmd_const) return pdmpm::app::constants_command(cst);
   return 2;

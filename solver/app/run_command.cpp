@@ -1,41 +1,78 @@
 #include <fmt/format.h>
 
+#include <cmath>
 #include <iostream>
 
 #include "solver/app/commands.hpp"
 #include "solver/core/error.hpp"
+#include "solver/core/state_archive.hpp"
 #include "solver/io/scene.hpp"
+#include "solver/sim/checkpoint.hpp"
+#include "solver/sim/interrupt.hpp"
 #include "solver/sim/run.hpp"
 
 namespace pdmpm::app {
+namespace {
 
-int run_command(const RunArgs& args) {
+// "--checkpoint-every": a whole number of steps ("5000"), or wall time with a unit
+// ("90s", "30m", "2h").
+void parse_checkpoint_interval(const std::string& text, sim::RunOptions& opt) {
+  if (text.empty()) return;
+  const auto fail = [&] {
+    throw InputError(
+        "", "--checkpoint-every",
+        fmt::format("'{}' is neither a number of steps (e.g. 5000) nor a wall time (e.g. 90s, 30m, 2h)", text));
+  };
+  std::size_t used = 0;
+  double value = 0.0;
   try {
-    const io::Scene scene = io::parse_scene(args.scene);
-    sim::RunOptions opt;
-    opt.out_dir = args.out.empty() ? std::filesystem::path("out") / scene.id : std::filesystem::path(args.out);
-    opt.threads = args.threads;
-    opt.progress = !args.quiet;
-    opt.write_fields = !args.no_fields;
-    const sim::RunResult r = sim::run_scene(scene, opt);
-    const auto& s = r.summary;
-    if (r.exit_code != 0) {
-      std::cerr << "pdmpm: " << r.message << "\n";
-      std::cerr << "pdmpm: outputs up to the failure are in " << opt.out_dir.string() << "\n";
-      return r.exit_code;
-    }
-    if (!args.quiet) {
-      const std::string rate = !s.contains("bond_updates_per_second")  // mpm, hybrid
-          ? fmt::format("{:.3g} particle-steps/s", s["particle_steps_per_second"].get<double>())
-          : fmt::format("{} bonds, {:.3g} bond updates/s", s["bonds"].get<long>(),
-                        s["bond_updates_per_second"].get<double>());
-      std::cerr << fmt::format("pdmpm: {} done: {} particles, {} steps of {:.4g} s in {:.3g} s ({}) → {}\n", scene.id,
-                               s["particles"].get<long>(), s["steps"].get<long>(), s["dt"].get<double>(),
-                               s["wall_time_s"].get<double>(), rate, opt.out_dir.string());
-    }
-    return 0;
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    fail();
+  }
+  const std::string unit = text.substr(used);
+  if (!(value > 0.0) || !std::isfinite(value)) fail();
+  if (unit.empty()) {
+    if (value != std::floor(value) || value > 9e18) fail();
+    opt.checkpoint_every_steps = static_cast<std::int64_t>(value);
+  } else if (unit == "s" || unit == "m" || unit == "h") {
+    opt.checkpoint_every_seconds = value * (unit == "s" ? 1.0 : unit == "m" ? 60.0 : 3600.0);
+  } else {
+    fail();
+  }
+}
+
+int run_and_report(const io::Scene& scene, const sim::RunOptions& opt, bool quiet) {
+  sim::install_interrupt_handlers();
+  const sim::RunResult r = sim::run_scene(scene, opt);
+  const auto& s = r.summary;
+  if (r.exit_code != 0) {
+    std::cerr << "pdmpm: " << r.message << "\n";
+    std::cerr << "pdmpm: outputs up to " << (r.status == "interrupted" ? "the interruption" : "the failure")
+              << " are in " << opt.out_dir.string() << "\n";
+    return r.exit_code;
+  }
+  if (!quiet) {
+    const std::string rate = !s.contains("bond_updates_per_second")  // mpm, hybrid
+        ? fmt::format("{:.3g} particle-steps/s", s["particle_steps_per_second"].get<double>())
+        : fmt::format("{} bonds, {:.3g} bond updates/s", s["bonds"].get<long>(),
+                      s["bond_updates_per_second"].get<double>());
+    std::cerr << fmt::format("pdmpm: {} done: {} particles, {} steps of {:.4g} s in {:.3g} s ({}) → {}\n", scene.id,
+                             s["particles"].get<long>(), s["steps"].get<long>(), s["dt"].get<double>(),
+                             s["wall_time_s"].get<double>(), rate, opt.out_dir.string());
+  }
+  return 0;
+}
+
+// Exit status of an exception a run or resume threw.
+int report_error() {
+  try {
+    throw;
   } catch (const InputError& e) {
     std::cerr << "pdmpm: error: " << e.what() << "\n";
+    return 2;
+  } catch (const core::StateMismatch& e) {
+    std::cerr << "pdmpm: error: the checkpoint does not fit this run: " << e.what() << "\n";
     return 2;
   } catch (const RunError& e) {
     std::cerr << "pdmpm: run failed: " << e.what() << "\n";
@@ -43,6 +80,41 @@ int run_command(const RunArgs& args) {
   } catch (const std::exception& e) {
     std::cerr << "pdmpm: internal error: " << e.what() << "\n";
     return 4;
+  }
+}
+
+}  // namespace
+
+int run_command(const RunArgs& args) {
+  try {
+    sim::RunOptions opt;
+    parse_checkpoint_interval(args.checkpoint_every, opt);
+    const io::Scene scene = io::parse_scene(args.scene);
+    opt.out_dir = args.out.empty() ? std::filesystem::path("out") / scene.id : std::filesystem::path(args.out);
+    opt.threads = args.threads;
+    opt.progress = !args.quiet;
+    opt.write_fields = !args.no_fields;
+    return run_and_report(scene, opt, args.quiet);
+  } catch (...) {
+    return report_error();
+  }
+}
+
+int resume_command(const ResumeArgs& args) {
+  try {
+    sim::RunOptions opt;
+    parse_checkpoint_interval(args.checkpoint_every, opt);
+    opt.resume = sim::read_checkpoint(args.dir);
+    const io::Scene scene = io::parse_scene_text(opt.resume->info.scene_text, opt.resume->info.scene_file);
+    opt.out_dir = args.dir;
+    opt.threads = args.threads;
+    opt.progress = !args.quiet;
+    opt.write_fields = opt.resume->info.write_fields;
+    if (!args.quiet)
+      std::cerr << fmt::format("pdmpm: resuming {} after step {} in {}\n", scene.id, opt.resume->info.step, args.dir);
+    return run_and_report(scene, opt, args.quiet);
+  } catch (...) {
+    return report_error();
   }
 }
 

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "solver/core/lattice.hpp"
+#include "solver/core/state_archive.hpp"
 #include "solver/core/types.hpp"
 
 namespace pdmpm::core {
@@ -46,6 +47,19 @@ struct Particles {
     b.push_back(Vec<D>::Zero());
     volume.push_back(vol);
     kind.push_back(ParticleKind::pd);
+  }
+
+  // What changes in a run (core/state_archive.hpp); the lattice, sites and ghost
+  // mirrors are the scene's and are rebuilt from it.
+  void checkpoint(StateArchive& a) {
+    a.expect("particles/count", size());
+    a.expect("particles/real", n_real);
+    a.sync("particles/u", u);
+    a.sync("particles/v", v);
+    a.sync("particles/f", f);
+    a.sync("particles/b", b);
+    a.sync("particles/volume", volume);
+    a.sync("particles/kind", kind);
   }
 
   // Copy each owner's displacement and velocity, reflected, into its ghosts.

@@ -41,6 +41,7 @@
 #include <vector>
 
 #include "solver/core/lattice.hpp"
+#include "solver/core/state_archive.hpp"
 #include "solver/core/types.hpp"
 
 namespace pdmpm::hybrid {
@@ -70,6 +71,14 @@ struct CrackTip {
   Vec<D> position = Vec<D>::Zero();  // estimate of the crack's end, near lattice.position(site)
   double laplacian = 0.0;            // ∇²φ at the site (1/length²)
 };
+
+}  // namespace pdmpm::hybrid
+
+// An int, a site, a position and a double: its bytes are its value (checkpoints copy them).
+template <int D>
+inline constexpr bool pdmpm::core::kBytesAreValue<pdmpm::hybrid::CrackTip<D>> = true;
+
+namespace pdmpm::hybrid {
 
 // Tips of the damage field phi[i] at sites[i] (the PD region; distinct sites),
 // sorted by site (lexicographic in the coordinates). Ids are -1.

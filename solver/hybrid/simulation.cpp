@@ -319,6 +319,30 @@ double Simulation<D>::internal_energy() const {
   return pd_.internal_energy() + mpm_.energies().strain;
 }
 
+template <int D>
+void Simulation<D>::checkpoint(core::StateArchive& a) {
+  pd_.checkpoint(a);
+  mpm_.checkpoint(a);
+  a.sync("hybrid/removed", removed_);
+  a.sync("hybrid/tips", tips_);
+  a.sync("hybrid/next_tip_id", next_tip_id_);
+  a.sync("hybrid/last_breaks", last_breaks_);
+  a.sync("hybrid/coupled", coupled_);
+  a.sync("hybrid/expansions_since_shrink", expansions_since_shrink_);
+  a.sync("hybrid/dt", dt_);
+  a.sync("hybrid/time", time_);
+  a.sync("hybrid/base_time", base_time_);
+  a.sync("hybrid/base_steps", base_steps_);
+  a.sync("hybrid/steps", steps_);
+  a.sync("hybrid/pd_particle_steps", pd_particle_steps_);
+  a.sync("hybrid/mpm_particle_steps", mpm_particle_steps_);
+  a.sync("hybrid/events", events_);
+  a.sync("hybrid/phase_seconds", seconds_);
+  a.sync("hybrid/energy_before_conversion", energy_before_conversion_);
+  a.sync("hybrid/conversion_energy", conversion_energy_);
+  a.sync("hybrid/largest_conversion_jump", largest_conversion_jump_);
+}
+
 template class Simulation<2>;
 template class Simulation<3>;
 

@@ -77,6 +77,10 @@ class Simulation {
   // around pre-cracks, and the particles `initial_pd` PD), boundary conditions at
   // t = 0 and the first PD forces.
   void start(std::span<const Index> initial_pd = {});
+  // Its state for a checkpoint (core/state_archive.hpp): the borrowed PD and MPM
+  // simulations', removed particles, tips, step bookkeeping, counters; not the
+  // particle store. A resumed run calls start() and then restores over it.
+  void checkpoint(core::StateArchive& a);
   // One step of size dt (the caller's: the smaller of the PD and MPM stable steps).
   void step(double dt, bool energy = false);
 

@@ -7,6 +7,8 @@
 #include <limits>
 #include <numeric>
 #include <set>
+#include <sstream>
+#include <system_error>
 #include <utility>
 
 #include "solver/core/error.hpp"
@@ -19,9 +21,12 @@ constexpr int kFormatVersion = 1;
 
 const char* xdmf_attribute_type(FieldKind kind) {
   switch (kind) {
-    case FieldKind::scalar: return "Scalar";
-    case FieldKind::vector: return "Vector";
-    case FieldKind::tensor6: return "Tensor6";
+    case FieldKind::scalar:
+      return "Scalar";
+    case FieldKind::vector:
+      return "Vector";
+    case FieldKind::tensor6:
+      return "Tensor6";
   }
   return "Scalar";
 }
@@ -45,12 +50,23 @@ std::string xml_escape(const std::string& text) {
   out.reserve(text.size());
   for (char c : text) {
     switch (c) {
-      case '&': out += "&amp;"; break;
-      case '<': out += "&lt;"; break;
-      case '>': out += "&gt;"; break;
-      case '"': out += "&quot;"; break;
-      case '\'': out += "&apos;"; break;
-      default: out += c;
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        out += c;
     }
   }
   return out;
@@ -72,15 +88,19 @@ struct FrameRecord {
 
 int components(FieldKind kind) {
   switch (kind) {
-    case FieldKind::scalar: return 1;
-    case FieldKind::vector: return 3;
-    case FieldKind::tensor6: return 6;
+    case FieldKind::scalar:
+      return 1;
+    case FieldKind::vector:
+      return 3;
+    case FieldKind::tensor6:
+      return 6;
   }
   return 1;
 }
 
 std::vector<double> pad_to_3d(std::span<const double> values, int dimension) {
-  if (dimension < 1 || dimension > 3) throw RunError(fmt::format("pad_to_3d: dimension {} is not 1, 2 or 3", dimension));
+  if (dimension < 1 || dimension > 3)
+    throw RunError(fmt::format("pad_to_3d: dimension {} is not 1, 2 or 3", dimension));
   const auto d = static_cast<std::size_t>(dimension);
   if (values.size() % d != 0)
     throw RunError(fmt::format("pad_to_3d: {} values are not a whole number of {}-vectors", values.size(), d));
@@ -106,7 +126,8 @@ struct FieldsWriter::Impl {
 FieldsWriter::FieldsWriter(std::filesystem::path h5_path, std::filesystem::path xdmf_path, std::string h5_name_in_xdmf,
                            int dimension)
     : impl_(std::make_unique<Impl>()) {
-  if (dimension < 1 || dimension > 3) throw RunError(fmt::format("fields writer: dimension {} is not 1, 2 or 3", dimension));
+  if (dimension < 1 || dimension > 3)
+    throw RunError(fmt::format("fields writer: dimension {} is not 1, 2 or 3", dimension));
   if (h5_name_in_xdmf.empty()) throw RunError("fields writer: the HDF5 file name used in the XDMF file is empty");
   Impl& s = *impl_;
   s.h5_path = std::move(h5_path);
@@ -143,12 +164,89 @@ FieldsWriter& FieldsWriter::operator=(FieldsWriter&& other) noexcept {
     if (impl_) {
       try {
         close();
-      } catch (...) {
-      }
+      } catch (...) {}
     }
     impl_ = std::move(other.impl_);
   }
   return *this;
+}
+
+FieldsWriter FieldsWriter::resume(const std::filesystem::path& source, std::filesystem::path h5_path,
+                                  std::filesystem::path xdmf_path, std::string h5_name_in_xdmf, int dimension,
+                                  core::StateArchive& checkpoint) {
+  std::error_code error;
+  std::filesystem::copy_file(source, h5_path, std::filesystem::copy_options::overwrite_existing, error);
+  if (error)
+    throw RunError(
+        fmt::format("fields: cannot copy '{}' to '{}': {}", source.string(), h5_path.string(), error.message()));
+  FieldsWriter w;
+  w.impl_ = std::make_unique<Impl>();
+  Impl& s = *w.impl_;
+  s.h5_path = std::move(h5_path);
+  s.xdmf_path = std::move(xdmf_path);
+  s.h5_name = std::move(h5_name_in_xdmf);
+  s.dimension = dimension;
+  w.sync_frames(checkpoint);
+  h5::silence_automatic_errors();
+  s.file = h5::open_file_for_writing(s.h5_path.string());
+  s.frames_group = h5::open_group(s.file.get(), "frames");
+  s.topology_group = h5::open_group(s.file.get(), "topology");
+  // Frames and vertex lists written after the checkpoint go: the resumed run writes them again.
+  std::set<std::string> kept_frames, kept_lists;
+  for (const FrameRecord& r : s.records) kept_frames.insert(frame_name(r.step));
+  for (std::int64_t n : s.vertex_lists) kept_lists.insert(vertex_list_name(n));
+  for (const std::string& name : h5::link_names(s.frames_group.get()))
+    if (!kept_frames.count(name)) h5::delete_link(s.frames_group.get(), name);
+  for (const std::string& name : h5::link_names(s.topology_group.get()))
+    if (!kept_lists.count(name)) h5::delete_link(s.topology_group.get(), name);
+  for (const std::string& name : kept_frames)
+    if (!h5::link_exists(s.frames_group.get(), name))
+      throw RunError(fmt::format("fields '{}' lacks frame {} of the checkpoint", source.string(), name));
+  return w;
+}
+
+void FieldsWriter::checkpoint(core::StateArchive& a) {
+  h5::flush(impl_->file.get());
+  sync_frames(a);
+}
+
+// The frame list as plain blocks: steps, times, particle counts, and one line of
+// "name:kind" pairs per frame.
+void FieldsWriter::sync_frames(core::StateArchive& a) {
+  Impl& s = *impl_;
+  std::vector<std::int64_t> steps, particles, lists(s.vertex_lists.begin(), s.vertex_lists.end());
+  std::vector<double> times;
+  std::string fields;
+  for (const FrameRecord& r : s.records) {
+    steps.push_back(r.step);
+    times.push_back(r.time);
+    particles.push_back(r.particles);
+    for (const FieldRecord& f : r.fields) fields += fmt::format("{}:{} ", f.name, static_cast<int>(f.kind));
+    fields += '\n';
+  }
+  a.sync("fields/steps", steps);
+  a.sync("fields/times", times);
+  a.sync("fields/particles", particles);
+  a.sync("fields/names", fields);
+  a.sync("fields/vertex_lists", lists);
+  if (a.saving()) return;
+  if (times.size() != steps.size() || particles.size() != steps.size())
+    throw core::StateMismatch("the checkpoint's frame list is inconsistent");
+  s.records.clear();
+  std::istringstream lines(fields);
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    FrameRecord r{steps[k], times[k], particles[k], {}};
+    std::string line, item;
+    std::getline(lines, line);
+    std::istringstream items(line);
+    while (items >> item) {
+      const auto colon = item.rfind(':');
+      if (colon == std::string::npos) throw core::StateMismatch("the checkpoint's frame list is damaged");
+      r.fields.push_back({item.substr(0, colon), static_cast<FieldKind>(std::stoi(item.substr(colon + 1)))});
+    }
+    s.records.push_back(std::move(r));
+  }
+  s.vertex_lists = std::set<std::int64_t>(lists.begin(), lists.end());
 }
 
 std::size_t FieldsWriter::frames() const { return impl_ ? impl_->records.size() : 0; }
@@ -175,7 +273,8 @@ void FieldsWriter::write_frame(std::int64_t step, double time, const std::vector
   std::set<std::string> seen;
   for (const Field& field : fields) {
     if (!is_valid_field_name(field.name))
-      throw RunError(fmt::format("{}: field name '{}' must be non-empty letters, digits, '_' or '-'", where, field.name));
+      throw RunError(
+          fmt::format("{}: field name '{}' must be non-empty letters, digits, '_' or '-'", where, field.name));
     if (field.name == "position") throw RunError(fmt::format("{}: field name 'position' is reserved", where));
     if (!seen.insert(field.name).second) throw RunError(fmt::format("{}: field '{}' given twice", where, field.name));
     const std::size_t expected = n * static_cast<std::size_t>(components(field.kind));
@@ -234,7 +333,8 @@ void FieldsWriter::Impl::write_xdmf() const {
     fmt::format_to(it, "      <Grid Name=\"step_{}\" GridType=\"Uniform\">\n", frame_name(frame.step));
     // 17 significant digits: the time read back is the double that was written.
     fmt::format_to(it, "        <Time Value=\"{:.17g}\"/>\n", frame.time);
-    fmt::format_to(it, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\">\n", n);
+    fmt::format_to(it, "        <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"{}\" NodesPerElement=\"1\">\n",
+                   n);
     fmt::format_to(it,
                    "          <DataItem Dimensions=\"{} 1\" NumberType=\"Int\" Precision=\"4\" "
                    "Format=\"HDF\">{}:/topology/{}</DataItem>\n",

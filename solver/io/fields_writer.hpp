@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "solver/core/state_archive.hpp"
+
 namespace pdmpm::io {
 
 enum class FieldKind { scalar, vector, tensor6 };
@@ -44,6 +46,16 @@ class FieldsWriter {
   FieldsWriter(std::filesystem::path h5_path, std::filesystem::path xdmf_path, std::string h5_name_in_xdmf,
                int dimension);
   ~FieldsWriter();
+  // Continues the fields of a checkpointed run: copies `source` (that run's HDF5
+  // file) to h5_path, drops the frames written after the checkpoint and takes up
+  // the frame list the checkpoint holds. RunError if the file cannot be used.
+  static FieldsWriter resume(const std::filesystem::path& source, std::filesystem::path h5_path,
+                             std::filesystem::path xdmf_path, std::string h5_name_in_xdmf, int dimension,
+                             core::StateArchive& checkpoint);
+  // Saving: flushes the HDF5 file (what a checkpoint refers to is on disk) and
+  // stores the frame list in the archive.
+  void checkpoint(core::StateArchive& a);
+
   FieldsWriter(FieldsWriter&&) noexcept;
   FieldsWriter& operator=(FieldsWriter&&) noexcept;
   FieldsWriter(const FieldsWriter&) = delete;
@@ -61,6 +73,8 @@ class FieldsWriter {
   std::size_t frames() const;
 
  private:
+  FieldsWriter() = default;
+  void sync_frames(core::StateArchive& a);
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -8,6 +8,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pdmpm::io::h5 {
 
@@ -45,12 +46,19 @@ class Handle {
 };
 
 Handle create_file(const std::string& path);
+Handle open_file_for_writing(const std::string& path);  // an existing file, read-write
 Handle create_group(hid_t parent, const std::string& name);
+Handle open_group(hid_t parent, const std::string& name);
+// Names of the links in a group, in name order.
+std::vector<std::string> link_names(hid_t group);
+void delete_link(hid_t parent, const std::string& name);
+bool link_exists(hid_t parent, const std::string& name);
+// Writes what the library holds of the file to disk (it stays open).
+void flush(hid_t file);
 
 // Contiguous dataset of shape dims (row-major), stored as little-endian IEEE
 // doubles / int32 whatever the machine.
-void write_dataset(hid_t parent, const std::string& name, std::span<const double> data,
-                   std::span<const hsize_t> dims);
+void write_dataset(hid_t parent, const std::string& name, std::span<const double> data, std::span<const hsize_t> dims);
 void write_dataset(hid_t parent, const std::string& name, std::span<const std::int32_t> data,
                    std::span<const hsize_t> dims);
 

@@ -14,6 +14,11 @@ class HistoryWriter {
   // Column names must be non-empty, unique, and free of commas, quotes and
   // line breaks (they are written unquoted).
   HistoryWriter(std::filesystem::path path, std::vector<std::string> columns);
+  // Continues the history in `source` at `path`: its header must be these columns,
+  // and its first `rows` rows are kept (a resumed run drops the rows written after
+  // its checkpoint). RunError if the file is not such a history.
+  static HistoryWriter resume(const std::filesystem::path& source, std::filesystem::path path,
+                              std::vector<std::string> columns, std::size_t rows);
   ~HistoryWriter();
   HistoryWriter(HistoryWriter&& other) noexcept;
   HistoryWriter& operator=(HistoryWriter&& other) noexcept;
@@ -28,6 +33,7 @@ class HistoryWriter {
   std::size_t rows() const { return rows_; }
 
  private:
+  HistoryWriter() = default;
   std::filesystem::path path_;
   std::vector<std::string> columns_;
   std::FILE* file_ = nullptr;

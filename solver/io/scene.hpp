@@ -169,6 +169,7 @@ enum class Method { pd, mpm, hybrid };
 
 struct Scene {
   std::string file, id, description;
+  std::string text;  // the TOML it was parsed from (a checkpoint keeps it)
   int dimension = 3;
   core::Setting setting = core::Setting::solid3d;
   double spacing = 0.0, delta = 0.0, measure = 1.0;

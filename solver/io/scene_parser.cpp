@@ -491,6 +491,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   TomlReader root(raw, file_label, "");
   Scene s;
   s.file = file_label;
+  s.text = text;
 
   const TomlReader head = root.table("scene");
   s.id = head.string("id");

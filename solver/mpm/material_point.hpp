@@ -1,5 +1,6 @@
 #pragma once
 // What a constitutive update reads and writes for one material point.
+#include "solver/core/state_archive.hpp"
 #include "solver/core/types.hpp"
 
 namespace pdmpm::mpm {
@@ -20,3 +21,8 @@ struct StressResult {
 };
 
 }  // namespace pdmpm::mpm
+
+// Nine doubles and one: its bytes are its value, so a checkpoint copies them as they are.
+template <>
+inline constexpr bool pdmpm::core::kBytesAreValue<pdmpm::mpm::PointHistory> = sizeof(pdmpm::mpm::PointHistory) ==
+    10 * sizeof(double);

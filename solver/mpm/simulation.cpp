@@ -873,6 +873,35 @@ double Simulation<D>::triaxiality(Index p) const {
   return mpm::triaxiality(state_.cauchy(p));
 }
 
+template <int D>
+void Simulation<D>::checkpoint(core::StateArchive& a) {
+  a.expect("mpm/grid_nodes", grid_.size());
+  auto& st = state_;
+  a.sync("mpm/mass", st.mass);
+  a.sync("mpm/half_width", st.half_width);
+  a.sync("mpm/F", st.F);
+  a.sync("mpm/kirchhoff", st.kirchhoff);
+  a.sync("mpm/J", st.J);
+  a.sync("mpm/out_of_plane_strain", st.out_of_plane_strain);
+  a.sync("mpm/history", st.history);
+  a.sync("mpm/eq_plastic_hardening", st.eq_plastic_hardening);
+  a.sync("mpm/energy", st.energy);
+  a.sync("mpm/dissipation", st.dissipation);
+  a.sync("mpm/damage", st.damage);
+  a.sync("mpm/failed", st.failed);
+  a.sync("mpm/initialised", st.initialised);
+  a.sync("mpm/active", active_);
+  a.sync("mpm/reactions", reactions_);
+  a.sync("mpm/newly_failed", newly_failed_);
+  a.sync("mpm/failed_this_step", failed_this_step_);
+  a.sync("mpm/phase_seconds", phase_seconds_);
+  a.sync("mpm/time", time_);
+  a.sync("mpm/steps", steps_);
+  a.sync("mpm/external_work", external_work_);
+  a.sync("mpm/boundary_work", boundary_work_);
+  a.sync("mpm/damping_work", damping_work_);
+}
+
 template class Simulation<1>;
 template class Simulation<2>;
 template class Simulation<3>;

@@ -121,6 +121,11 @@ class Simulation {
   // it itself, so only needed for momentum()/energies() right after kinds changed.
   void refresh_active();
 
+  // Its state for a checkpoint (core/state_archive.hpp): the material points' state,
+  // time, step count, work books, this step's failures and reactions; not the
+  // particle store, which it borrows.
+  void checkpoint(core::StateArchive& a);
+
  private:
   void prepare_step(double t);
   void update_grid(double t, double dt);

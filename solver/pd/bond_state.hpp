@@ -16,10 +16,12 @@
 // and dynamic relaxation's trial evaluations need no hand-made save/restore).
 // A later per-bond quantity (plastic extension) joins as another Committed<T>.
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "solver/core/index.hpp"
 #include "solver/core/particles.hpp"
+#include "solver/core/state_archive.hpp"
 
 namespace pdmpm::pd {
 
@@ -52,6 +54,10 @@ struct Committed {
   }
   void accept() { committed = trial; }
   void reject() { trial = committed; }
+  void checkpoint(core::StateArchive& a, const std::string& name) {
+    a.sync(name + "/trial", trial);
+    a.sync(name + "/committed", committed);
+  }
 };
 
 struct BondState {
@@ -88,6 +94,10 @@ struct BondState {
   void reject() {
     if (pending_breaks) flags.reject();
     pending_breaks = 0;
+  }
+  void checkpoint(core::StateArchive& a) {
+    flags.checkpoint(a, "pd/bond_flags");
+    a.sync("pd/pending_breaks", pending_breaks);
   }
 };
 

@@ -114,6 +114,15 @@ double ShortRangeContact<D>::stiffness_row_sum(const System<D>& sys) const {
   return neighbours * vmax * prm_.stiffness_factor * c_ / sys.delta;
 }
 
+template <int D>
+void ShortRangeContact<D>::checkpoint(core::StateArchive& a) {
+  a.sync("contact/positions", y_);
+  a.sync("contact/positions_at_build", y_at_build_);
+  a.sync("contact/real", real_);
+  a.sync("contact/start", start_);
+  a.sync("contact/partner", partner_);
+}
+
 template class ShortRangeContact<1>;
 template class ShortRangeContact<2>;
 template class ShortRangeContact<3>;

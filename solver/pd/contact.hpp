@@ -27,6 +27,8 @@ class ShortRangeContact {
   std::int64_t add_forces(System<D>& sys);
   // Upper bound of the contact stiffness row sum Σ_j V_j C_ij (for the stable step).
   double stiffness_row_sum(const System<D>& sys) const;
+  // The Verlet list and the positions it was built at: the pairs and their order.
+  void checkpoint(core::StateArchive& a);
 
  private:
   ContactParameters prm_;

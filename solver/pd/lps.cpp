@@ -87,6 +87,15 @@ double Lps<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   return sum;
 }
 
+// m follows the particle kinds in a hybrid run; θ and Aθ/m are the last evaluation's.
+template <int D>
+void Lps<D>::checkpoint(core::StateArchive& a) {
+  a.sync("lps/weighted_volume", m_);
+  a.sync("lps/inverse_weighted_volume", inv_m_);
+  a.sync("lps/dilatation", theta_);
+  a.sync("lps/alpha_beta", alpha_beta_);
+}
+
 template class Lps<1>;
 template class Lps<2>;
 template class Lps<3>;

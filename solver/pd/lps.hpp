@@ -19,11 +19,12 @@ class Lps final : public Model<D> {
   void dilatation(const System<D>& sys, std::vector<double>& theta) const override;
   double stiffness_row_sum(const System<D>& sys, Index i) const override;
   const std::vector<double>& weighted_volume() const { return m_; }
+  void checkpoint(core::StateArchive& a) override;
 
  private:
   LpsCoefficients k_{};
-  std::vector<double> m_;      // weighted volume, real + ghosts
-  std::vector<double> theta_;  // dilatation of the last evaluation, real + ghosts
+  std::vector<double> m_;           // weighted volume, real + ghosts
+  std::vector<double> theta_;       // dilatation of the last evaluation, real + ghosts
   std::vector<double> inv_m_;       // 1/m per particle
   std::vector<double> alpha_beta_;  // (Aθ/m, B/m) per particle, interleaved for the kernel's gather
 

@@ -393,6 +393,33 @@ Tensor6 LpsPlastic<D>::own_stress(const System<D>& sys, Index i) const {
   return out;
 }
 
+// The committed plastic state, and the weighted volumes (they follow the particle kinds in a
+// hybrid run); the last evaluation's values too, since fields written before the next
+// evaluation read them.
+template <int D>
+void LpsPlastic<D>::checkpoint(core::StateArchive& a) {
+  a.sync("lps_plastic/weighted_volume", m_);
+  a.sync("lps_plastic/inverse_weighted_volume", inv_m_);
+  a.sync("lps_plastic/dilatation", theta_);
+  a.sync("lps_plastic/deviatoric_dilatation", theta_c_);
+  a.sync("lps_plastic/inverse_deviatoric_weighted_volume", inv_md_);
+  plastic_ext_.checkpoint(a, "lps_plastic/plastic_extension");
+  eq_plastic_.checkpoint(a, "lps_plastic/eq_plastic_strain");
+  a.sync("lps_plastic/dissipation", dissipation_);
+  a.sync("lps_plastic/plastic_work", plastic_work_);
+  a.sync("lps_plastic/plastic_work_trial", plastic_work_trial_);
+  a.sync("lps_plastic/sigma_eq", sigma_eq_);
+  a.sync("lps_plastic/trial_strain", trial_eps_);
+  a.sync("lps_plastic/scale", scale_);
+  a.sync("lps_plastic/mean_term", mean_term_);
+  a.sync("lps_plastic/volumetric_energy", volumetric_energy_);
+  axial_plastic_.checkpoint(a, "lps_plastic/axial_plastic");
+  ductile_damage_.checkpoint(a, "lps_plastic/ductile_damage");
+  a.sync("lps_plastic/failing", failing_);
+  a.sync("lps_plastic/axial_elastic", axial_elastic_);
+  a.sync("lps_plastic/out_of_plane_strain", out_of_plane_);
+}
+
 template class LpsPlastic<1>;
 template class LpsPlastic<2>;
 template class LpsPlastic<3>;

@@ -68,6 +68,7 @@ class LpsPlastic final : public Model<D> {
   double stiffness_row_sum(const System<D>& sys, Index i) const override;
   void accept() override;
   void reject() override;
+  void checkpoint(core::StateArchive& a) override;
   const std::vector<double>* eq_plastic_strain() const override { return &eq_plastic_.trial; }
   double plastic_work() const override { return plastic_work_trial_; }
   bool has_own_stress() const override { return true; }

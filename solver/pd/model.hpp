@@ -50,6 +50,8 @@ class Model {
   // accept() commits what the last evaluation wrote, reject() returns to the last commit.
   virtual void accept() {}
   virtual void reject() {}
+  // Everything beyond the reference configuration a resumed run needs (core/state_archive.hpp).
+  virtual void checkpoint(core::StateArchive& a) { (void)a; }
   // Plastic models: equivalent plastic strain per real particle and the plastic work
   // so far (J); nullptr and 0 for elastic ones.
   virtual const std::vector<double>* eq_plastic_strain() const { return nullptr; }

@@ -129,6 +129,23 @@ Eigen::Vector3d Simulation<D>::angular_momentum() const {
   return density() * L;
 }
 
+template <int D>
+void Simulation<D>::checkpoint(core::StateArchive& a) {
+  a.expect("pd/bond_sides", sys_.families.n_bonds());
+  sys_.bonds.checkpoint(a);
+  a.sync("pd/owners", sys_.owners);
+  model_.checkpoint(a);
+  if (forcing_.contact) forcing_.contact->checkpoint(a);
+  a.sync("pd/movers", movers_);
+  a.sync("pd/energy_density", energy_);
+  a.sync("pd/broken_sides", broken_sides_);
+  a.sync("pd/contact_pairs", contact_pairs_);
+  a.sync("pd/bond_evaluations", bond_evaluations_);
+  a.sync("pd/indenter_force", indenter_force_);
+  a.sync("pd/force_seconds", force_seconds_);
+  a.sync("pd/contact_seconds", contact_seconds_);
+}
+
 template class Simulation<1>;
 template class Simulation<2>;
 template class Simulation<3>;

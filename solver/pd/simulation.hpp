@@ -87,6 +87,10 @@ class Simulation {
   // whose breaks and plastic flow are dropped (the next evaluation makes them again).
   double probe_internal_energy();
 
+  // Its state for a checkpoint (core/state_archive.hpp): bond flags, the model's and
+  // contact's state, the counters; not the particle store, which it borrows.
+  void checkpoint(core::StateArchive& a);
+
   double kinetic_energy() const;
   double internal_energy() const;  // from the last internal_forces(true)
   Vec<D> momentum() const;

@@ -35,6 +35,7 @@ class HybridRun {
   const std::vector<hybrid::CrackTip<D>>& tips();
   std::vector<Vec<D>> reactions() const;
   nlohmann::json summary() const;
+  void state(core::StateArchive& a);  // what a checkpoint holds of this run
 
   const io::Scene& scene_;
   HybridSetup<D>& s_;
@@ -106,7 +107,21 @@ void HybridRun<D>::start_outputs() {
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.pd.probes, cols);
+  rec_.checkpoints([this](core::StateArchive& a) { state(a); });
   rec_.start(cols, D, end_time_, "pd");
+}
+
+template <int D>
+void HybridRun<D>::state(core::StateArchive& a) {
+  a.sync("hybrid_run/dt", dt_);
+  a.sync("hybrid_run/total_steps", total_steps_);
+  a.sync("hybrid_run/steps_done", steps_done_);
+  a.sync("hybrid_run/kinetic_energy", kinetic_);
+  a.sync("hybrid_run/internal_energy", internal_);
+  a.sync("hybrid_run/initial_energy", initial_energy_);
+  a.sync("hybrid_run/pd_work", pd_work_);
+  p_.checkpoint(a);
+  h_.checkpoint(a);
 }
 
 template <int D>
@@ -301,9 +316,13 @@ RunResult HybridRun<D>::run() {
   kinetic_ = h_.kinetic_energy();
   internal_ = h_.internal_energy();
   initial_energy_ = kinetic_ + internal_;
-  history_row(0, 0.0);
-  if (rec_.frame_due(0)) frame(0, 0.0);
-  for (std::int64_t step = 1; step <= total_steps_; ++step) {
+  if (rec_.resuming()) {
+    rec_.restore();
+  } else {
+    history_row(0, 0.0);
+    if (rec_.frame_due(0)) frame(0, 0.0);
+  }
+  for (std::int64_t step = steps_done_ + 1; step <= total_steps_; ++step) {
     const bool last = step == total_steps_;
     const bool with_energy = step % energy_every_ == 0 || rec_.history_due(step) || last;
     this->step(with_energy);
@@ -318,6 +337,7 @@ RunResult HybridRun<D>::run() {
     if (rec_.frame_due(step)) frame(step, t);
     // The PD count from the mover list: counts() scans every particle, too much for each step.
     rec_.progress(step, t, static_cast<Index>(h_.pd().movers().size()));
+    if (rec_.after_step(step, t)) break;
   }
   return rec_.finish(steps_done_, h_.time(), h_.counts().pd, p_.n_real, summary());
 }

@@ -36,6 +36,7 @@ class MpmRun {
   void frame(std::int64_t step, double t);
   bool stable(std::int64_t step, double t);
   nlohmann::json summary() const;
+  void state(core::StateArchive& a);  // what a checkpoint holds of this run
 
   const io::Scene& scene_;
   MpmSetup<D>& s_;
@@ -68,7 +69,19 @@ void MpmRun<D>::start_outputs() {
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.probes, cols);
+  rec_.checkpoints([this](core::StateArchive& a) { state(a); });
   rec_.start(cols, D, end_time_, "failed");
+}
+
+template <int D>
+void MpmRun<D>::state(core::StateArchive& a) {
+  a.sync("mpm_run/dt", dt_);
+  a.sync("mpm_run/total_steps", total_steps_);
+  a.sync("mpm_run/steps_done", steps_done_);
+  a.sync("mpm_run/failed", failed_);
+  a.sync("mpm_run/balance0", balance0_);
+  p_.checkpoint(a);
+  sim_.checkpoint(a);
 }
 
 template <int D>
@@ -203,7 +216,8 @@ RunResult MpmRun<D>::run() {
   start_outputs();
   const std::int64_t check_every = std::min<std::int64_t>(rec_.history_every(), 10);
   balance0_ = sim_.energies().balance();
-  for (std::int64_t step = 0; step <= total_steps_; ++step) {
+  if (rec_.resuming()) rec_.restore();
+  for (std::int64_t step = rec_.resuming() ? steps_done_ + 1 : 0; step <= total_steps_; ++step) {
     if (step > 0) {
       sim_.step(dt_);
       steps_done_ = step;
@@ -219,6 +233,7 @@ RunResult MpmRun<D>::run() {
     if (rec_.history_due(step)) history_row(step, t);
     if (rec_.frame_due(step)) frame(step, t);
     if (step > 0) rec_.progress(step, t, failed_);
+    if (step > 0 && rec_.after_step(step, t)) break;
   }
   return rec_.finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_, p_.n_real, summary());
 }

@@ -44,6 +44,7 @@ class PdRun {
   bool stable(std::int64_t step, double t, const time::VelocityVerlet<D>& stepper);
   void verlet();
   void adr();
+  void state(core::StateArchive& a);  // what a checkpoint holds of this run (verlet)
   nlohmann::json summary() const;
   bool plastic() const { return s_.model->eq_plastic_strain() != nullptr; }
   // K + U + W_p − E₀ − W_ext: zero for an exact integrator (W_p = 0 for elastic models).
@@ -66,6 +67,7 @@ class PdRun {
   double kinetic_energy_ = 0.0, internal_energy_ = 0.0, initial_energy_ = 0.0, external_work_ = 0.0;
   time::RelaxationResult relax_;
   std::optional<pd::CrackObservables<D>> crack_;
+  std::optional<time::VelocityVerlet<D>> stepper_;
 };
 
 template <int D>
@@ -132,7 +134,27 @@ void PdRun<D>::start_outputs() {
     const auto more = crack_columns(*crack_);
     cols.insert(cols.end(), more.begin(), more.end());
   }
+  if (!dynamic)
+    rec_.no_checkpoints("dynamic relaxation (ADR) runs have no checkpoints yet");
+  else if (crack_)
+    rec_.no_checkpoints("the [crack] observables keep a history of their own that checkpoints do not hold yet");
+  else
+    rec_.checkpoints([this](core::StateArchive& a) { state(a); });
   rec_.start(cols, D, dynamic ? end_time_ : 0.0);
+}
+
+template <int D>
+void PdRun<D>::state(core::StateArchive& a) {
+  a.sync("pd_run/dt", dt_);
+  a.sync("pd_run/total_steps", total_steps_);
+  a.sync("pd_run/steps_done", steps_done_);
+  a.sync("pd_run/kinetic_energy", kinetic_energy_);
+  a.sync("pd_run/internal_energy", internal_energy_);
+  a.sync("pd_run/initial_energy", initial_energy_);
+  a.sync("pd_run/external_work", external_work_);
+  p_.checkpoint(a);
+  simulation_.checkpoint(a);
+  stepper_->checkpoint(a);
 }
 
 template <int D>
@@ -253,14 +275,18 @@ std::vector<pd::Tensor6> PdRun<D>::stresses() const {
 
 template <int D>
 void PdRun<D>::verlet() {
-  time::VelocityVerlet<D> stepper(simulation_, dt_);
-  stepper.start();
-  kinetic_energy_ = simulation_.kinetic_energy();
-  internal_energy_ = simulation_.internal_energy();
-  initial_energy_ = stepper.initial_energy();
-  history_row(0, 0.0);
-  maybe_frame(0, 0.0);
-  for (std::int64_t step = 1; step <= total_steps_; ++step) {
+  auto& stepper = stepper_.emplace(simulation_, dt_);
+  if (rec_.resuming()) {
+    rec_.restore();
+  } else {
+    stepper.start();
+    kinetic_energy_ = simulation_.kinetic_energy();
+    internal_energy_ = simulation_.internal_energy();
+    initial_energy_ = stepper.initial_energy();
+    history_row(0, 0.0);
+    maybe_frame(0, 0.0);
+  }
+  for (std::int64_t step = steps_done_ + 1; step <= total_steps_; ++step) {
     const bool with_energy = step % energy_every_ == 0 || rec_.history_due(step);
     stepper.step(with_energy);
     const double t = stepper.time();
@@ -278,6 +304,7 @@ void PdRun<D>::verlet() {
     if (rec_.history_due(step)) history_row(step, t);
     maybe_frame(step, t);
     rec_.progress(step, t, simulation_.broken_bonds());
+    if (rec_.after_step(step, t)) return;
   }
 }
 
@@ -308,6 +335,7 @@ void PdRun<D>::adr() {
       rec_.stop("not_converged", m.str());
       return;
     }
+    if (rec_.after_step(load, t)) return;
   }
 }
 

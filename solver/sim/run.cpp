@@ -39,7 +39,7 @@ RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
 
 RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary) {
   RunResult r;
-  r.exit_code = status == "completed" ? 0 : 3;
+  r.exit_code = status == "completed" ? 0 : status == "interrupted" ? kExitInterrupted : 3;
   r.status = std::move(status);
   r.message = std::move(message);
   r.summary = std::move(summary);

@@ -2,7 +2,9 @@
 // Runs a validated scene and writes its outputs (fields.h5 + fields.xdmf,
 // history.csv, summary.json) into the output directory, all or nothing.
 #include <filesystem>
+#include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -12,22 +14,32 @@
 
 namespace pdmpm::sim {
 
+struct Resume;
+
 struct RunOptions {
   std::filesystem::path out_dir = "out";
-  int threads = 0;          // 0: OpenMP's default
-  bool progress = true;     // progress bar / periodic lines on stderr
+  int threads = 0;       // 0: OpenMP's default
+  bool progress = true;  // progress bar / periodic lines on stderr
   bool write_fields = true;
+  // Periodic checkpoints (sim/checkpoint.hpp) every so many steps and/or wall seconds; 0: none.
+  std::int64_t checkpoint_every_steps = 0;
+  double checkpoint_every_seconds = 0.0;
+  std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGINT arrived during this step
+  std::shared_ptr<Resume> resume;      // continue this checkpoint's run (pdmpm resume)
 };
 
+// Exit status of a run stopped by SIGINT/SIGTERM (its checkpoint written, if the run has one).
+inline constexpr int kExitInterrupted = 5;
+
 struct RunResult {
-  std::string status;       // completed | unstable | not_converged
+  std::string status;  // completed | unstable | not_converged | interrupted
   std::string message;
   nlohmann::json summary;
-  int exit_code = 0;        // 0 completed, 3 unstable or not converged
+  int exit_code = 0;  // 0 completed, 3 unstable or not converged, 5 interrupted
 };
 
 // Writes summary.json into the staged output directory and commits it (the last
-// step of every run, PD or MPM); exit code 0 for "completed", 3 otherwise.
+// step of every run, PD or MPM); exit code 0 for "completed", 5 for "interrupted", 3 otherwise.
 RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary);
 
 // Throws InputError for problems found while building the model (before any

@@ -2,17 +2,23 @@
 
 #include <omp.h>
 
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <csignal>
 #include <iostream>
 #include <utility>
 
 #include "solver/core/build_info.hpp"
+#include "solver/core/error.hpp"
+#include "solver/sim/interrupt.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
 
 namespace pdmpm::sim {
 
 RunRecorder::RunRecorder(const io::Scene& scene, const RunOptions& options)
-    : scene_(scene), options_(options), t0_(std::chrono::steady_clock::now()) {}
+    : scene_(scene), options_(options), t0_(std::chrono::steady_clock::now()), last_checkpoint_(t0_) {}
 
 void RunRecorder::plan(std::int64_t total_steps, double time_per_step) {
   total_steps_ = total_steps;
@@ -22,16 +28,93 @@ void RunRecorder::plan(std::int64_t total_steps, double time_per_step) {
 
 void RunRecorder::start(const std::vector<std::string>& columns, int dimension, double progress_end_time,
                         const std::string& counter) {
+  check_checkpoint_options();
   out_ = std::make_unique<io::OutputDirectory>(options_.out_dir);
-  history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), columns);
-  if (options_.write_fields)
-    fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5",
-                                                 dimension);
+  if (resuming()) {
+    open_resumed_outputs(columns, dimension);
+  } else {
+    history_ = std::make_unique<io::HistoryWriter>(out_->path("history.csv"), columns);
+    if (options_.write_fields)
+      fields_ = std::make_unique<io::FieldsWriter>(out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5",
+                                                   dimension);
+  }
   if (options_.progress) {
     progress_ = std::make_unique<io::Progress>(std::cerr, io::Progress::stderr_is_terminal(), total_steps_,
                                                progress_end_time, scene_.id);
     progress_->set_counter_name(counter);
   }
+}
+
+void RunRecorder::check_checkpoint_options() const {
+  const bool periodic = options_.checkpoint_every_steps > 0 || options_.checkpoint_every_seconds > 0.0;
+  if ((periodic || resuming()) && !state_)
+    throw InputError(scene_.file, "", fmt::format("this run cannot write checkpoints: {}", no_checkpoint_reason_));
+}
+
+std::int64_t RunRecorder::resume_step() const { return resuming() ? options_.resume->info.step : 0; }
+
+// The outputs of the checkpointed run are copied into this run's staging directory,
+// cut back to the checkpoint (rows and frames written after it go), and continued.
+void RunRecorder::open_resumed_outputs(const std::vector<std::string>& columns, int dimension) {
+  auto& a = options_.resume->state;
+  const auto source = options_.resume->outputs();
+  std::int64_t rows = 0;
+  a.sync("recorder/history_rows", rows);
+  a.sync("recorder/wall_seconds", earlier_wall_seconds_);
+  history_ = std::make_unique<io::HistoryWriter>(io::HistoryWriter::resume(
+      source / "history.csv", out_->path("history.csv"), columns, static_cast<std::size_t>(rows)));
+  if (options_.write_fields)
+    fields_ = std::make_unique<io::FieldsWriter>(io::FieldsWriter::resume(
+        source / "fields.h5", out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", dimension, a));
+  const std::int64_t step = resume_step();
+  next_frame_ =
+      static_cast<std::size_t>(std::upper_bound(frame_steps_.begin(), frame_steps_.end(), step) - frame_steps_.begin());
+}
+
+void RunRecorder::restore() {
+  auto& a = options_.resume->state;
+  state_(a);
+  if (const auto left = a.unread(); !left.empty())
+    throw core::StateMismatch(fmt::format("the checkpoint holds state this run does not have ('{}', …)", left.front()));
+}
+
+void RunRecorder::write_checkpoint(std::int64_t step, const std::filesystem::path& path, const std::string& outputs) {
+  core::StateArchive a(core::StateArchive::Mode::save);
+  CheckpointInfo info{build_info::git_sha(), scene_.file, scene_.text, outputs, step, options_.write_fields};
+  sync_info(a, info);
+  auto rows = static_cast<std::int64_t>(history_->rows());
+  double wall = earlier_wall_seconds_ + seconds_since(t0_);
+  a.sync("recorder/history_rows", rows);
+  a.sync("recorder/wall_seconds", wall);
+  if (fields_) fields_->checkpoint(a);
+  state_(a);
+  write_checkpoint_file(a, path);
+  last_checkpoint_ = std::chrono::steady_clock::now();
+}
+
+bool RunRecorder::after_step(std::int64_t step, double t) {
+  if (step == options_.interrupt_at_step) request_interrupt(SIGINT);
+  if (const int signal = interrupt_requested()) {
+    clear_interrupt();  // handled: a later run in this process starts afresh
+    const char* name = signal == SIGTERM ? "SIGTERM" : "SIGINT";
+    if (state_) {
+      // Into the staging directory: the checkpoint is committed with the outputs it continues.
+      write_checkpoint(step, out_->path(kCheckpointFile), "");
+      stop("interrupted",
+           fmt::format("interrupted by {} after step {} (t = {:.6g}); continue with: pdmpm resume {}", name, step, t,
+                       options_.out_dir.string()));
+    } else {
+      stop("interrupted",
+           fmt::format("interrupted by {} after step {} (t = {:.6g}); no checkpoint: {}", name, step, t,
+                       no_checkpoint_reason_));
+    }
+    return true;
+  }
+  if (!state_ || step >= total_steps_) return false;
+  const bool due = (options_.checkpoint_every_steps > 0 && step % options_.checkpoint_every_steps == 0) ||
+      (options_.checkpoint_every_seconds > 0.0 && seconds_since(last_checkpoint_) >= options_.checkpoint_every_seconds);
+  if (due) write_checkpoint(step, options_.out_dir / kCheckpointFile, out_->staging().filename().string());
+  return false;
 }
 
 bool RunRecorder::frame_due(std::int64_t step) {
@@ -52,23 +135,32 @@ RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t co
   if (progress_) progress_->finish(steps_done, t, count);
   if (fields_) fields_->close();
   history_.reset();
-  const double wall = seconds_since(t0_);
+  const double wall = earlier_wall_seconds_ + seconds_since(t0_);
   nlohmann::json summary = std::move(method_keys);
-  summary.update({{"scene", scene_.id},
-                  {"file", scene_.file},
-                  {"description", scene_.description},
-                  {"status", status_},
-                  {"message", message_},
-                  {"steps", steps_done},
-                  {"steps_requested", total_steps_},
-                  {"threads", omp_get_max_threads()},
-                  {"wall_time_s", wall},
-                  {"peak_memory_bytes", peak_memory_bytes()},
-                  {"particle_steps_per_second",
-                   wall > 0 ? static_cast<double>(particles) * static_cast<double>(steps_done) / wall : 0.0},
-                  {"provenance",
-                   {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}});
-  return commit_run(*out_, status_, message_, std::move(summary));
+  summary.update(
+      {{"scene", scene_.id},
+       {"file", scene_.file},
+       {"description", scene_.description},
+       {"status", status_},
+       {"message", message_},
+       {"steps", steps_done},
+       {"steps_requested", total_steps_},
+       {"threads", omp_get_max_threads()},
+       {"wall_time_s", wall},
+       {"peak_memory_bytes", peak_memory_bytes()},
+       {"particle_steps_per_second",
+        wall > 0 ? static_cast<double>(particles) * static_cast<double>(steps_done) / wall : 0.0},
+       {"provenance",
+        {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}});
+  RunResult result = commit_run(*out_, status_, message_, std::move(summary));
+  // What the committed outputs replace: a periodic checkpoint (the run has ended; one
+  // that stopped at a signal has just committed its own) and the staging directory
+  // of a killed run that this one continued.
+  std::error_code ignored;
+  if (status_ != "interrupted") std::filesystem::remove(options_.out_dir / kCheckpointFile, ignored);
+  if (resuming() && options_.resume->info.outputs.starts_with(".partial-"))
+    std::filesystem::remove_all(options_.out_dir / options_.resume->info.outputs, ignored);
+  return result;
 }
 
 }  // namespace pdmpm::sim

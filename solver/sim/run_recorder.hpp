@@ -11,6 +11,7 @@
 // each already knows when it has a row or a frame to give.
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -22,6 +23,7 @@
 #include "solver/io/output_directory.hpp"
 #include "solver/io/progress.hpp"
 #include "solver/io/scene.hpp"
+#include "solver/sim/checkpoint.hpp"
 #include "solver/sim/run.hpp"
 
 namespace pdmpm::sim {
@@ -44,6 +46,22 @@ class RunRecorder {
   void start(const std::vector<std::string>& columns, int dimension, double progress_end_time,
              const std::string& counter = "broken");
 
+  // Checkpoints (sim/checkpoint.hpp): before start(), the function that passes the
+  // method's state through an archive, or why this run has none (then a checkpoint
+  // interval is refused and an interrupt stops the run without one).
+  using StateFn = std::function<void(core::StateArchive&)>;
+  void checkpoints(StateFn state) { state_ = std::move(state); }
+  void no_checkpoints(std::string why) { no_checkpoint_reason_ = std::move(why); }
+  // A resumed run: the step its checkpoint was written after, and, after start(), the
+  // restore of the method's state (core::StateMismatch if the checkpoint does not fit).
+  bool resuming() const { return options_.resume != nullptr; }
+  std::int64_t resume_step() const;
+  void restore();
+  // After every step, once its history row and frame are written: writes a checkpoint
+  // when one is due; true when the run must stop (a signal asked), then with its
+  // checkpoint written and status "interrupted".
+  bool after_step(std::int64_t step, double t);
+
   void write_history(const std::vector<double>& row) { history_->write_row(row); }
   // True once per scheduled frame step (then write it to fields()).
   bool frame_due(std::int64_t step);
@@ -63,6 +81,11 @@ class RunRecorder {
   RunResult finish(std::int64_t steps_done, double t, std::int64_t count, Index particles, nlohmann::json method_keys);
 
  private:
+  void check_checkpoint_options() const;
+  void open_resumed_outputs(const std::vector<std::string>& columns, int dimension);
+  // Writes a checkpoint after `step` to `path`; `outputs` says where its outputs are.
+  void write_checkpoint(std::int64_t step, const std::filesystem::path& path, const std::string& outputs);
+
   const io::Scene& scene_;
   RunOptions options_;
   std::chrono::steady_clock::time_point t0_;
@@ -70,6 +93,10 @@ class RunRecorder {
   std::vector<std::int64_t> frame_steps_;
   std::size_t next_frame_ = 0;
   std::string status_ = "completed", message_;
+  StateFn state_;
+  std::string no_checkpoint_reason_;
+  std::chrono::steady_clock::time_point last_checkpoint_;
+  double earlier_wall_seconds_ = 0.0;  // a resumed run: the wall time before its checkpoint
 
   std::unique_ptr<io::OutputDirectory> out_;
   std::unique_ptr<io::HistoryWriter> history_;

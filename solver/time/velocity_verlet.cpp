@@ -67,7 +67,8 @@ void VelocityVerlet<D>::book_work() {
     const auto [i, a] = held_[k];
     const double du = p.u[i][a] - u_old_[i][a];
     const double fnew = p.f[i][a] + p.b[i][a];
-    dw += p.volume[i] * (0.5 * rho * (p.v[i][a] * p.v[i][a] - held_v_[k] * held_v_[k]) - 0.5 * (held_f_[k] + fnew) * du);
+    dw +=
+        p.volume[i] * (0.5 * rho * (p.v[i][a] * p.v[i][a] - held_v_[k] * held_v_[k]) - 0.5 * (held_f_[k] + fnew) * du);
   }
   work_ += dw;
   work_abs_ += std::abs(dw);
@@ -83,6 +84,15 @@ double VelocityVerlet<D>::pending_work() const {
     if (b > 0.0) lag += p.volume[i] * b * (p.v[i].norm() * dt_ + 0.5 * dt_ * dt_ * b / rho);
   }
   return lag;
+}
+
+template <int D>
+void VelocityVerlet<D>::checkpoint(core::StateArchive& a) {
+  a.sync("verlet/dt", dt_);
+  a.sync("verlet/steps", steps_);
+  a.sync("verlet/initial_energy", e0_);
+  a.sync("verlet/work", work_);
+  a.sync("verlet/absolute_work", work_abs_);
 }
 
 template class VelocityVerlet<1>;

@@ -31,6 +31,9 @@ class VelocityVerlet {
   // work lags behind the kinetic energy by).
   double pending_work() const;
 
+  // Resume: the integrator's own state (steps, work books); the body's is the Simulation's.
+  void checkpoint(core::StateArchive& a);
+
  private:
   void book_work();
 

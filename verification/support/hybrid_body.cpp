@@ -26,4 +26,25 @@ HybridBody::HybridBody(const hybrid::Settings& settings, const HybridPlate& plat
   hybrid = std::make_unique<hybrid::Simulation<2>>(*pd, *mpm, settings);
 }
 
+SceneText hybrid_plate_scene(const std::string& hybrid_keys, const std::string& time) {
+  SceneText t;
+  t.id = "hybrid_plate";
+  t.plane = "strain";
+  t.min = {0.0, 0.0};
+  t.max = {0.03, 0.02};
+  t.poissons_ratio = "0.3";
+  t.model = "lps_plastic";
+  t.material_keys = "yield_stress = 4e8\ntangent_modulus = 2e9\ncritical_stretch = 0.01";
+  t.time = time;
+  t.tables = "[mpm]\n\n[hybrid]\n" + hybrid_keys +
+      "\n[[precrack]]\nfrom = [0.0, 0.0100]\nto = [0.008, 0.0100]\n"
+      "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"2.0\"]\n"
+      "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
+      "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
+      "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
+      "\n[[probe]]\nname = \"mid\"\npoint = [0.015, 0.01]\n"
+      "\n[output]\nframes = 3\n";
+  return t;
+}
+
 }  // namespace pdmpm::test

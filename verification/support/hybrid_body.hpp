@@ -8,6 +8,7 @@
 
 #include "solver/hybrid/simulation.hpp"
 #include "solver/sim/pd_setup.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm::test {
 
@@ -34,5 +35,10 @@ struct HybridBody {
   explicit HybridBody(const hybrid::Settings& settings, const HybridPlate& plate = {});
   core::Particles<2>& particles() { return pd_setup.system.particles; }
 };
+
+// A hybrid scene as text: a 30 × 20 mm plate (Δx = 1 mm, δ = 3Δx) of lps_plastic + J2
+// with an edge pre-crack, pulled apart at its top and bottom edges; `hybrid_keys` are the
+// [hybrid] table's lines.
+SceneText hybrid_plate_scene(const std::string& hybrid_keys, const std::string& time = "steps = 200");
 
 }  // namespace pdmpm::test

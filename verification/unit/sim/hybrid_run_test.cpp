@@ -20,6 +20,7 @@
 #include "solver/pd/stress.hpp"
 #include "solver/sim/run.hpp"
 #include "verification/support/fields_reader.hpp"
+#include "verification/support/hybrid_body.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
 
@@ -42,31 +43,8 @@ std::map<std::string, std::string> last_history_row(const fs::path& csv) {
   return row;
 }
 
-// A 30 × 20 plate (Δx = 1 mm, δ = 3Δx) of lps_plastic + J2, an edge pre-crack,
-// pulled apart at its top and bottom edges.
-test::SceneText plate(const std::string& hybrid_keys, const std::string& time = "steps = 200") {
-  test::SceneText t;
-  t.id = "hybrid_plate";
-  t.plane = "strain";
-  t.min = {0.0, 0.0};
-  t.max = {0.03, 0.02};
-  t.poissons_ratio = "0.3";
-  t.model = "lps_plastic";
-  t.material_keys = "yield_stress = 4e8\ntangent_modulus = 2e9\ncritical_stretch = 0.01";
-  t.time = time;
-  t.tables = "[mpm]\n\n[hybrid]\n" + hybrid_keys +
-      "\n[[precrack]]\nfrom = [0.0, 0.0100]\nto = [0.008, 0.0100]\n"
-      "\n[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nvalue = [\"0\", \"2.0\"]\n"
-      "region = { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }\n"
-      "\n[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nvalue = [\"0\", \"-2.0\"]\n"
-      "region = { type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] }\n"
-      "\n[[probe]]\nname = \"mid\"\npoint = [0.015, 0.01]\n"
-      "\n[output]\nframes = 3\n";
-  return t;
-}
-
 TEST(HybridScene, DefaultsAndKeys) {
-  const auto s = plate("").parse();
+  const auto s = test::hybrid_plate_scene("").parse();
   ASSERT_EQ(s.method, io::Method::hybrid);
   ASSERT_TRUE(s.hybrid && s.mpm);
   EXPECT_EQ(s.hybrid->mode, hybrid::Mode::expand_shrink);
@@ -77,7 +55,7 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_FALSE(s.hybrid->audit_conversions);
   EXPECT_EQ(s.mpm->constitutive, mpm::MaterialModel::j2);
 
-  const auto k = plate(
+  const auto k = test::hybrid_plate_scene(
                      "mode = \"expand\"\npd_radius = 5\nexpand_trigger = 2\nexpand_radius = 6\nkeep_radius = 4\n"
                      "shrink_every = 3\nprecrack_starts_pd = false\naudit_conversions = "
                      "true\n[hybrid.tips]\ndamage_threshold = 0.3\n"
@@ -96,7 +74,7 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_EQ(k.output.fields, (std::vector<std::string>{"method", "displacement", "velocity", "damage", "von_mises"}));
 
   // lps goes with MPM's linear elastic law.
-  auto elastic = plate("");
+  auto elastic = test::hybrid_plate_scene("");
   elastic.model = "lps";
   elastic.material_keys = "critical_stretch = 0.01";
   EXPECT_EQ(elastic.parse().mpm->constitutive, mpm::MaterialModel::linear_elastic);
@@ -104,7 +82,7 @@ TEST(HybridScene, DefaultsAndKeys) {
 
 TEST(HybridScene, RefusesWhatTheRegionsCannotCarry) {
   auto with_tables = [](const std::string& extra) {
-    auto t = plate("");
+    auto t = test::hybrid_plate_scene("");
     t.tables += extra;
     return t;
   };
@@ -113,7 +91,7 @@ TEST(HybridScene, RefusesWhatTheRegionsCannotCarry) {
                    .parse(),
                InputError);
   EXPECT_THROW(with_tables("\n[crack]\nthreshold = 0.5\n").parse(), InputError);
-  auto adr = plate("", "integrator = \"adr\"");
+  auto adr = test::hybrid_plate_scene("", "integrator = \"adr\"");
   EXPECT_THROW(adr.parse(), InputError);
 }
 
@@ -127,7 +105,7 @@ struct Outcome {
 Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
   const test::ScratchDir scratch("hybrid_run_" + name);
   const fs::path out = scratch.fresh("out");
-  const auto scene = plate(hybrid_keys).parse(name + ".toml");
+  const auto scene = test::hybrid_plate_scene(hybrid_keys).parse(name + ".toml");
   RunOptions opt;
   opt.out_dir = out;
   opt.progress = false;
@@ -219,10 +197,10 @@ TEST(HybridRun, ModePdIsAllPeridynamics) {
   EXPECT_LT(std::stod(o.last.at("reaction_bottom_y")), 0.0);
 }
 
-// The plate of plate() with no grips: PD around its pre-crack, the grid elsewhere
+// The plate of test::hybrid_plate_scene() with no grips: PD around its pre-crack, the grid elsewhere
 // (expand_shrink, radii of 1.5–2 δ), given [[initial]] tables; 100 steps, each in history.csv.
 RunResult run_free_plate(const std::string& initial, const fs::path& out) {
-  auto t = plate("");
+  auto t = test::hybrid_plate_scene("");
   t.time = "steps = 100";
   t.tables =
       "[mpm]\n\n[hybrid]\npd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n"
