@@ -157,6 +157,16 @@ double PatchBlock<D>::lattice_energy(Index i, const Eigen::Matrix3d& eps3) const
     }
     return 0.5 * k.kappa * theta * theta + 0.5 * k.B * dev / m;
   }
+  if (cfg_.model == "hpd") {
+    // Every bond's fitted strain is ε (exact for affine fields) and the bond weights sum to 1:
+    // W = ½ λ (tr ε)² + G ε:ε, with λ* = Eν/(1 − ν²) in plane stress (docs/models/hpd.md).
+    const auto& m = sys_.material;
+    const double lambda = sys_.setting == core::Setting::plane_stress ? m.E * m.nu / (1.0 - m.nu * m.nu)
+        : D == 1                                                      ? 0.0
+                                                                      : m.lame();
+    const double G = D == 1 ? 0.5 * m.E : m.shear();  // a bar: W = ½ E ε²
+    return 0.5 * lambda * eps.trace() * eps.trace() + G * (eps.array() * eps.array()).sum();
+  }
   return not_measured;
 }
 
