@@ -51,7 +51,8 @@ void read_pd_model(const TomlReader& m, Scene& s) {
   s.damage = m.boolean("damage", true);
   if (auto bt = m.optional_enum<BreakTiming>("break_timing")) s.break_after_force = *bt == BreakTiming::after_force;
   if (auto wv = m.optional_enum<WeightedVolume>("weighted_volume")) {
-    if (s.model == "hpd") m.fail("weighted_volume", "not for type = \"hpd\" (its bond weights are normalised per particle)");
+    if (s.model == "hpd")
+      m.fail("weighted_volume", "not for type = \"hpd\" (its bond weights are normalised per particle)");
     if (!pd::model_info(s.model).state_based) {
       std::string state_based;
       for (const auto& info : pd::model_table())
@@ -69,12 +70,15 @@ void read_pd_model(const TomlReader& m, Scene& s) {
   if (s.model == "hpd") {
     if (auto law = m.optional_enum<pd::HpdLaw>("constitutive")) s.hpd.law = *law;
     if (auto k = m.optional_integer("overlap_min_points")) {
-      if (*k < 2 || *k > 1000) m.fail("overlap_min_points", "must be an integer in [dimension + 1, 1000]; got " + std::to_string(*k));
-      if (s.hpd.law == pd::HpdLaw::axial_1d) m.fail("overlap_min_points", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
+      if (*k < 2 || *k > 1000)
+        m.fail("overlap_min_points", "must be an integer in [dimension + 1, 1000]; got " + std::to_string(*k));
+      if (s.hpd.law == pd::HpdLaw::axial_1d)
+        m.fail("overlap_min_points", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
       s.hpd.min_overlap = static_cast<int>(*k);
     }
     if (auto w = m.optional_number("overlap_end_weight")) {
-      if (s.hpd.law == pd::HpdLaw::axial_1d) m.fail("overlap_end_weight", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
+      if (s.hpd.law == pd::HpdLaw::axial_1d)
+        m.fail("overlap_end_weight", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
       s.hpd.end_weight = m.in_range("overlap_end_weight", *w, 1.0, 1e4, false, false);
     }
   } else {

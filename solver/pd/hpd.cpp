@@ -59,9 +59,8 @@ double Hpd<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   const auto& t = sys.table;
   double sum = 0.0;
   if (law_ == HpdLaw::axial_1d) {
-    sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
-      sum += c_ * t.weight[k] / t.length[k] * sys.particles.volume[j];
-    });
+    sys.for_each_live_bond(
+        i, [&](BondIndex, Index j, int k) { sum += c_ * t.weight[k] / t.length[k] * sys.particles.volume[j]; });
     return sum;
   }
   // Largest eigenvalue of C on symmetric tensors: dλ + 2G (volumetric) or 2G (deviatoric); a bar: E.

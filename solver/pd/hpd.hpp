@@ -73,10 +73,10 @@ class Hpd final : public Model<D> {
   int min_points_ = D + 1;
   double end_weight_ = 1.0;
   double lambda_ = 0.0, shear_ = 0.0, young_ = 0.0, axial_modulus_ = 0.0;
-  double c_ = 0.0;                // axial_1d: PMB's micromodulus
-  std::vector<double> inv_m_;     // 1/m_i (reference family)
+  double c_ = 0.0;                   // axial_1d: PMB's micromodulus
+  std::vector<double> inv_m_;        // 1/m_i (reference family)
   std::vector<double> bond_weight_;  // V_i a_ij per bond side
-  std::vector<Mat<D>> bond_p_;    // V_i a_ij P_ij per bond side, last evaluation
+  std::vector<Mat<D>> bond_p_;       // V_i a_ij P_ij per bond side, last evaluation
   SubHorizon<D> sub_;
 
   std::int64_t break_bonds(System<D>& sys, double s0, bool after_force) const;

@@ -40,10 +40,9 @@ ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plas
 
 const std::vector<ModelInfo>& model_table() {
   //                        name           state-based pair potential plastic symmetry planes
-  static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false, true),
-                                               row<Lps>("lps", true, false, false, true),
-                                               row<LpsPlastic>("lps_plastic", true, false, true, false),
-                                               row<Hpd>("hpd", true, false, false, false)};
+  static const std::vector<ModelInfo> table = {
+      row<Pmb>("pmb", false, true, false, true), row<Lps>("lps", true, false, false, true),
+      row<LpsPlastic>("lps_plastic", true, false, true, false), row<Hpd>("hpd", true, false, false, false)};
   return table;
 }
 

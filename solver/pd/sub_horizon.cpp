@@ -169,12 +169,13 @@ std::string sub_horizon_shortfall(const core::Stencil<D>& st, int min_points) {
   for (int s = 0; s < n; ++s) {
     pts = {{Vec<D>::Zero(), 1.0, 0}, {st.offset[s].template cast<double>(), 1.0, 0}};
     for (int q = 0; q < n; ++q)
-      if (q != s && diff[static_cast<std::size_t>(s) * n + q] >= 0) pts.push_back({st.offset[q].template cast<double>(), 1.0, 0});
+      if (q != s && diff[static_cast<std::size_t>(s) * n + q] >= 0)
+        pts.push_back({st.offset[q].template cast<double>(), 1.0, 0});
     if (!fit(pts, min_points, coef)) {
       std::ostringstream out;
       out << "the sub-horizon of the bond with offset (" << st.offset[s].transpose() << ") Δx holds " << pts.size()
-          << " points" << (static_cast<int>(pts.size()) < min_points ? "" : ", all on one line or plane") << " (at least "
-          << min_points << " spanning " << D << " dimensions needed)";
+          << " points" << (static_cast<int>(pts.size()) < min_points ? "" : ", all on one line or plane")
+          << " (at least " << min_points << " spanning " << D << " dimensions needed)";
       return out.str();
     }
   }

@@ -36,7 +36,7 @@ struct SubHorizon {
   // The same entries by point: particle k appears in the entries at_point[at_begin[k] … at_begin[k + 1]).
   std::vector<BondIndex> at_begin;
   std::vector<BondIndex> at_point;
-  std::vector<BondIndex> entry_bond;  // the bond side of each entry
+  std::vector<BondIndex> entry_bond;     // the bond side of each entry
   std::vector<std::uint8_t> built_live;  // live bit of every bond side when built
   std::int64_t n_axial = 0;              // live bond sides on the fallback
 

@@ -9,14 +9,19 @@
 
 namespace pdmpm::test {
 
-double interior_margin(const std::string& model, double delta) { return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta; }
+double interior_margin(const std::string& model, double delta) {
+  return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta;
+}
 
 double default_measure(core::Setting s) {
   switch (s) {
-    case core::Setting::bar1d: return 1e-6;
+    case core::Setting::bar1d:
+      return 1e-6;
     case core::Setting::plane_stress:
-    case core::Setting::plane_strain: return 1e-3;
-    case core::Setting::solid3d: return 1.0;
+    case core::Setting::plane_strain:
+      return 1e-3;
+    case core::Setting::solid3d:
+      return 1.0;
   }
   return 1.0;
 }
@@ -230,7 +235,8 @@ PatchResult PatchBlock<D>::affine(const Eigen::Matrix3d& H, bool small) {
     const double pred = lattice_energy(i, eps);
     const double perr = pred / W_cl - 1.0;
     if (std::isnan(pred) || std::abs(perr) >= std::abs(r.predicted_error)) r.predicted_error = perr;
-    r.prediction_mismatch = std::isnan(pred) ? not_measured : std::max(r.prediction_mismatch, std::abs(w - pred) / W_cl);
+    r.prediction_mismatch =
+        std::isnan(pred) ? not_measured : std::max(r.prediction_mismatch, std::abs(w - pred) / W_cl);
   }
   return r;
 }

@@ -155,9 +155,8 @@ std::vector<Vec<D>> correspondence_forces(const System<D>& sys) {
   }
   std::vector<Vec<D>> f(n, Vec<D>::Zero());
   for (Index i = 0; i < n; ++i)
-    sys.for_each_live_bond(i, [&](BondIndex, Index j, int s) {
-      f[i] += t.weight[s] * p.volume[j] * (sk[i] + sk[j]) * t.xi[s];
-    });
+    sys.for_each_live_bond(
+        i, [&](BondIndex, Index j, int s) { f[i] += t.weight[s] * p.volume[j] * (sk[i] + sk[j]) * t.xi[s]; });
   return f;
 }
 
