@@ -36,7 +36,7 @@ template <int D>
 void Hpd<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
   if (law_ == HpdLaw::axial_1d) return;
   for (Index i : changed) set_weighted_volume(sys, i);
-  sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);
+  sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);  // the reference family changed
 }
 
 template <int D>
@@ -67,10 +67,10 @@ double Hpd<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   const double hooke = D == 1 ? young_ : std::max(std::abs(D * lambda_ + 2.0 * shear_), 2.0 * shear_);
   const double modulus = std::max(hooke, axial_modulus_);
   for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) {
-    const BondIndex e = sub_.at_point[q], b = sub_.entry_bond[e];
+    const BondIndex b = sub_.at_bond[q];
     double row = 0.0;
     for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l) row += sub_.coef[l].norm();
-    sum += bond_weight_[b] * sub_.coef[e].norm() * row;
+    sum += bond_weight_[b] * sub_.at_coef[q].norm() * row;
   }
   return 0.5 * modulus * sum / sys.particles.volume[i];
 }
@@ -139,7 +139,11 @@ void Hpd<D>::axial_forces(System<D>& sys, const ForceRequest& req) const {
 template <int D>
 Mat<D> Hpd<D>::second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, double& psi) const {
   // Ẽ = ½(FᵀF − I) = ½(H + Hᵀ + HᵀH), without the cancellation of I at small strain.
-  const Mat<D> strain = 0.5 * (H + H.transpose() + H.transpose() * H);
+  // Entry by entry: as an expression GCC stored the product in halves and reloaded it whole, a
+  // store-forwarding stall that made this the dearest line of a 3D step at δ = 2Δx.
+  Mat<D> strain;
+  for (int a = 0; a < D; ++a)
+    for (int c = 0; c < D; ++c) strain(a, c) = 0.5 * (H(a, c) + H(c, a) + H.col(a).dot(H.col(c)));
   if (sub_.axial[b]) {  // fallback: the bond's own Green strain along it, uniaxial stress
     const Vec<D> n = sys.table.xi[sys.families.shape[b]] / sys.table.length[sys.families.shape[b]];
     const double enn = n.dot(strain * n);
@@ -159,7 +163,7 @@ Mat<D> Hpd<D>::second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, 
 // −P c_k over the sub-horizon entries that name it.
 template <int D>
 void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
-  if (sub_.stale(sys)) sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);
+  if (sub_.stale(sys)) sub_.update(sys, min_points_, end_weight_);
   auto& p = sys.particles;
   const auto fam = sys.family_view();
 #pragma omp parallel for schedule(static)
@@ -167,9 +171,17 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
     const Index i = fam.particle(k);
     double w = 0.0;
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
-      if (!sys.bonds.live(b)) continue;
+      if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
+        bond_p_[b] = Mat<D>::Zero();
+        continue;
+      }
       Mat<D> H = Mat<D>::Zero();
-      for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) H += p.u[sub_.point[e]] * sub_.coef[e].transpose();
+      // Column by column: the outer-product expression made GCC spill the product to the stack and
+      // reload it across two stores, a store-forwarding stall per entry (3× slower).
+      for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
+        const Vec<D>& u = p.u[sub_.point[e]];
+        for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
+      }
       double psi = 0.0;
       const Mat<D> S = second_piola(sys, b, H, psi);
       bond_p_[b] = bond_weight_[b] * (S + H * S);  // V_i a_ij F S
@@ -181,10 +193,7 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
   for (Index k = 0; k < fam.n_owners; ++k) {
     const Index i = fam.particle(k);
     Vec<D> f = Vec<D>::Zero();
-    for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) {
-      const BondIndex e = sub_.at_point[q];
-      f -= bond_p_[sub_.entry_bond[e]] * sub_.coef[e];
-    }
+    for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) f -= bond_p_[sub_.at_bond[q]] * sub_.at_coef[q];
     p.f[i] = f / p.volume[i];
   }
 }

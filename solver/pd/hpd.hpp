@@ -40,8 +40,9 @@
 // A plain fit averages the mode over the sub-horizon and resists weakly; weighting the bond's
 // ends (HpdOptions::end_weight) ties the fit to the bond's own stretch, as in the 1D law.
 //
-// Damage: a bond breaks at the critical stretch as in the other models; the sub-horizons are
-// rebuilt when the live bonds change, so points across a crack leave every fit. Bonds whose
+// Damage: a bond breaks at the critical stretch as in the other models; when the live bonds
+// change, the sub-horizons they reach are fitted again, so points across a crack leave every
+// fit. Bonds whose
 // sub-horizon is too small or flat use the axial fallback: ψ = ½ E₁ Ẽ_nn², Ẽ_nn = n·Ẽ·n, with
 // E₁ the setting's uniaxial-stress modulus (E, or E/(1 − ν²) in plane strain).
 // Ghost particles (symmetry planes) are not supported yet.

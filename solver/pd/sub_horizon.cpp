@@ -1,8 +1,11 @@
 #include "solver/pd/sub_horizon.hpp"
 
+#include <omp.h>
+
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <sstream>
+#include <utility>
 
 namespace pdmpm::pd {
 namespace {
@@ -50,21 +53,22 @@ std::vector<int> difference_table(const core::Stencil<D>& st) {
   return diff;
 }
 
-// The live bond of particle j with stencil index r, or −1 (families are in stencil order).
-template <int D>
-BondIndex live_bond_at(const System<D>& sys, Index j, int r) {
+// Whether particle j has a bond with stencil index r that satisfies `linked` (families are in
+// stencil order).
+template <int D, class Linked>
+bool bonded_at(const System<D>& sys, Index j, int r, Linked linked) {
   const auto& f = sys.families;
   const auto first = f.shape.begin() + f.begin(j), last = f.shape.begin() + f.end(j);
   const auto it = std::lower_bound(first, last, static_cast<std::uint16_t>(r));
-  if (it == last || *it != r) return -1;
-  const BondIndex b = it - f.shape.begin();
-  return sys.bonds.live(b) ? b : -1;
+  return it != last && *it == r && linked(it - f.shape.begin());
 }
 
-// The sub-horizon of live bond b = i→j (stencil index s): i, j and every point live-bonded to both.
-template <int D>
+// The sub-horizon of bond b = i→j (stencil index s): i, j and every point bonded to both, a bond
+// counting when `linked` says so (live: the current sub-horizon; in the reference family: the
+// largest it can be, the slots of the layout).
+template <int D, class Linked>
 void gather_points(const System<D>& sys, const std::vector<int>& diff, Index i, BondIndex b, double end_weight,
-                   std::vector<Point<D>>& pts) {
+                   Linked linked, std::vector<Point<D>>& pts) {
   const auto& f = sys.families;
   const auto& t = sys.table;
   const auto& vol = sys.particles.volume;
@@ -77,9 +81,122 @@ void gather_points(const System<D>& sys, const std::vector<int>& diff, Index i, 
   for (BondIndex c = f.begin(i); c < f.end(i); ++c) {
     const int q = f.shape[c];
     const int r = diff[static_cast<std::size_t>(s) * n + q];
-    if (c == b || r < 0 || !sys.bonds.live(c) || live_bond_at(sys, j, r) < 0) continue;
+    if (c == b || r < 0 || !linked(c) || !bonded_at(sys, j, r, linked)) continue;
     pts.push_back({t.xi[q], vol[f.neighbor[c]], f.neighbor[c]});
   }
+}
+
+// Stencil index of −offset_s for every s (the stencil is symmetric).
+template <int D>
+std::vector<int> reverse_table(const core::Stencil<D>& st) {
+  std::vector<int> rev(st.size());
+  for (int s = 0; s < st.size(); ++s)
+    rev[s] =
+        static_cast<int>(std::find(st.offset.begin(), st.offset.end(), IVec<D>(-st.offset[s])) - st.offset.begin());
+  return rev;
+}
+
+// Which bond sides to fit again since the live bits were `built_live`. The sub-horizon of b = i→j
+// (offset s) reads (gather_points) the live bits of b, of i's sides i→k to points k that are in
+// j's stencil too (diff[s][·] ≥ 0), and of j's sides j→k to those same points, i.e. to points in
+// i's stencil (diff[−s][·] ≥ 0); everything else it reads (reference positions, volumes) is fixed
+// once the families are built. A bond none of whose read bits changed keeps its coefficients,
+// which are what a full build computes, bit for bit: the fit is a deterministic function of the
+// same inputs (verification/unit/pd/sub_horizon_test.cpp).
+template <int D>
+std::vector<std::uint8_t> bonds_to_refit(const System<D>& sys, const std::vector<int>& diff,
+                                         const std::vector<int>& reverse, const std::vector<std::uint8_t>& built_live) {
+  const auto& f = sys.families;
+  const Index n = sys.particles.n_real;
+  const int ns = f.stencil.size();
+  std::vector<std::uint8_t> refit(f.n_bonds()), changed(f.n_bonds()), owner_changed(n);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    bool any = false;
+    for (BondIndex b = f.begin(i); b < f.end(i); ++b) {
+      changed[b] = built_live[b] != static_cast<std::uint8_t>(sys.bonds.live(b));
+      any = any || changed[b];
+    }
+    owner_changed[i] = any;
+  }
+  // Whether a changed side of `owner` leads to a point of the overlap of bond offset s.
+  auto reads_a_change = [&](Index owner, int s) {
+    if (!owner_changed[owner]) return false;
+    for (BondIndex c = f.begin(owner); c < f.end(owner); ++c)
+      if (changed[c] && diff[static_cast<std::size_t>(s) * ns + f.shape[c]] >= 0) return true;
+    return false;
+  };
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i)
+    for (BondIndex b = f.begin(i); b < f.end(i); ++b) {
+      const int s = f.shape[b];
+      refit[b] = changed[b] || reads_a_change(i, s) || reads_a_change(f.neighbor[b], reverse[s]);
+    }
+  return refit;
+}
+
+// The slots by point, in slot order within each point: a stable counting sort in which each
+// thread counts, then places, a contiguous range of bond sides, the ranges in order, so the
+// result does not depend on the number of threads.
+template <int D>
+void sort_by_point(SubHorizon<D>& h, Index n) {
+  const BondIndex nb = static_cast<BondIndex>(h.begin.size()) - 1;
+  h.at_begin.assign(static_cast<std::size_t>(n) + 1, 0);
+  h.at_bond.resize(h.point.size());
+  h.at_coef.assign(h.point.size(), Vec<D>::Zero());
+  h.entry_at.resize(h.point.size());
+  std::vector<std::vector<BondIndex>> next;  // per thread: count, then the next slot, of each point
+#pragma omp parallel
+  {
+    const int t = omp_get_thread_num(), threads = omp_get_num_threads();
+#pragma omp single
+    next.assign(threads, std::vector<BondIndex>(n, 0));
+    const BondIndex lo = nb * t / threads, hi = nb * (t + 1) / threads;
+    auto& mine = next[t];
+    for (BondIndex e = h.begin[lo]; e < h.begin[hi]; ++e) ++mine[h.point[e]];
+#pragma omp barrier
+#pragma omp single
+    {
+      BondIndex at = 0;
+      for (Index k = 0; k < n; ++k) {
+        h.at_begin[k] = at;
+        for (auto& slots : next) at += std::exchange(slots[k], at);
+      }
+      h.at_begin[n] = at;
+    }
+    for (BondIndex b = lo; b < hi; ++b)
+      for (BondIndex e = h.begin[b]; e < h.begin[b + 1]; ++e) {
+        const BondIndex q = mine[h.point[e]]++;
+        h.at_bond[q] = b;
+        h.entry_at[e] = q;
+      }
+  }
+}
+
+// The coefficients of bond side b for the current live bonds, written into its slots (and their
+// copies by point); zero in the slots of points not in the sub-horizon now, all zero if b is not
+// live. The live points are a subsequence of the slots' (both in the same order).
+template <int D>
+void fill(SubHorizon<D>& h, const System<D>& sys, const std::vector<int>& diff, Index i, BondIndex b, int min_points,
+          double end_weight, std::vector<Point<D>>& pts, std::vector<Vec<D>>& coef) {
+  const BondIndex first = h.begin[b], last = h.begin[b + 1];
+  auto put = [&](BondIndex e, const Vec<D>& c) { h.coef[e] = h.at_coef[h.entry_at[e]] = c; };
+  h.axial[b] = 0;
+  if (!sys.bonds.live(b)) {
+    for (BondIndex e = first; e < last; ++e) put(e, Vec<D>::Zero());
+    return;
+  }
+  gather_points(
+      sys, diff, i, b, end_weight, [&](BondIndex c) { return sys.bonds.live(c); }, pts);
+  if (!fit(pts, min_points, coef)) {  // the axial fallback: the two ends, the first two slots
+    h.axial[b] = 1;
+    const Vec<D>& xi = sys.table.xi[sys.families.shape[b]];
+    pts.resize(2);
+    coef = {-xi / xi.squaredNorm(), xi / xi.squaredNorm()};
+  }
+  std::size_t l = 0;
+  for (BondIndex e = first; e < last; ++e)
+    put(e, l < pts.size() && pts[l].id == h.point[e] ? coef[l++] : Vec<D>::Zero());
 }
 
 }  // namespace
@@ -91,65 +208,64 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
   const auto& f = sys.families;
   const BondIndex nb = f.n_bonds();
   const Index n = sys.particles.n_real;
-  const auto diff = difference_table(f.stencil);
   SubHorizon h;
-  h.axial.assign(nb, 0);
-  h.built_live.assign(nb, 0);
-  std::vector<BondIndex> count(nb, 0);
-  // Pass 1: how many entries each live bond side has (its own particle's loop: no races).
-#pragma omp parallel
-  {
-    std::vector<Point<D>> pts;
-    std::vector<Vec<D>> coef;
-#pragma omp for schedule(static)
-    for (Index i = 0; i < n; ++i)
-      for (BondIndex b = f.begin(i); b < f.end(i); ++b) {
-        h.built_live[b] = sys.bonds.live(b);
-        if (!h.built_live[b]) continue;
-        gather_points(sys, diff, i, b, end_weight, pts);
-        const bool full = fit(pts, min_points, coef);
-        h.axial[b] = !full;
-        count[b] = full ? static_cast<BondIndex>(pts.size()) : 2;
-      }
-  }
+  h.diff = difference_table(f.stencil);
+  h.reverse = reverse_table(f.stencil);
+  const auto& diff = h.diff;
+  auto in_family = [&](BondIndex c) { return sys.bonds.in_reference_family(c); };
   h.begin.assign(nb + 1, 0);
-  for (BondIndex b = 0; b < nb; ++b) h.begin[b + 1] = h.begin[b] + count[b];
-  h.point.resize(h.begin[nb]);
-  h.coef.resize(h.begin[nb]);
-  h.entry_bond.resize(h.begin[nb]);
-  // Pass 2: the entries.
+  // The slots: per bond side of the reference family, its largest sub-horizon.
 #pragma omp parallel
   {
     std::vector<Point<D>> pts;
-    std::vector<Vec<D>> coef;
 #pragma omp for schedule(static)
     for (Index i = 0; i < n; ++i)
-      for (BondIndex b = f.begin(i); b < f.end(i); ++b) {
-        if (!h.built_live[b]) continue;
-        gather_points(sys, diff, i, b, end_weight, pts);
-        if (h.axial[b]) {
-          const Vec<D>& xi = sys.table.xi[f.shape[b]];
-          pts.resize(2);
-          coef = {-xi / xi.squaredNorm(), xi / xi.squaredNorm()};
-        } else {
-          fit(pts, min_points, coef);
+      for (BondIndex b = f.begin(i); b < f.end(i); ++b)
+        if (in_family(b)) {
+          gather_points(sys, diff, i, b, end_weight, in_family, pts);
+          h.begin[b + 1] = static_cast<BondIndex>(pts.size());
         }
-        for (std::size_t l = 0; l < pts.size(); ++l) {
-          h.point[h.begin[b] + l] = pts[l].id;
-          h.coef[h.begin[b] + l] = coef[l];
-          h.entry_bond[h.begin[b] + l] = b;
+#pragma omp single
+    {
+      for (BondIndex b = 0; b < nb; ++b) h.begin[b + 1] += h.begin[b];
+      h.point.resize(h.begin[nb]);
+      h.coef.assign(h.begin[nb], Vec<D>::Zero());
+    }
+#pragma omp for schedule(static)
+    for (Index i = 0; i < n; ++i)
+      for (BondIndex b = f.begin(i); b < f.end(i); ++b)
+        if (in_family(b)) {
+          gather_points(sys, diff, i, b, end_weight, in_family, pts);
+          for (std::size_t l = 0; l < pts.size(); ++l) h.point[h.begin[b] + static_cast<BondIndex>(l)] = pts[l].id;
         }
-      }
   }
-  for (BondIndex b = 0; b < nb; ++b) h.n_axial += h.built_live[b] && h.axial[b];
-  // The entries by point: a counting sort in entry order (deterministic).
-  h.at_begin.assign(static_cast<std::size_t>(n) + 1, 0);
-  for (Index l : h.point) ++h.at_begin[l + 1];
-  for (Index k = 0; k < n; ++k) h.at_begin[k + 1] += h.at_begin[k];
-  h.at_point.resize(h.point.size());
-  std::vector<BondIndex> next(h.at_begin.begin(), h.at_begin.end() - 1);
-  for (BondIndex e = 0; e < static_cast<BondIndex>(h.point.size()); ++e) h.at_point[next[h.point[e]]++] = e;
+  sort_by_point(h, n);
+  h.axial.assign(nb, 0);
+  h.built_live.assign(nb, 0);  // every live side differs: update fits them all
+  h.update(sys, min_points, end_weight);
   return h;
+}
+
+template <int D>
+void SubHorizon<D>::update(const System<D>& sys, int min_points, double end_weight) {
+  const auto& f = sys.families;
+  const BondIndex nb = f.n_bonds();
+  const auto refit = bonds_to_refit(sys, diff, reverse, built_live);
+  // Each side writes its own slots and their copies by point: no two sides share a slot.
+#pragma omp parallel
+  {
+    std::vector<Point<D>> pts;
+    std::vector<Vec<D>> fitted;
+#pragma omp for schedule(static)
+    for (Index i = 0; i < sys.particles.n_real; ++i)
+      for (BondIndex b = f.begin(i); b < f.end(i); ++b)
+        if (refit[b]) fill(*this, sys, diff, i, b, min_points, end_weight, pts, fitted);
+  }
+  n_axial = 0;
+  for (BondIndex b = 0; b < nb; ++b) {
+    built_live[b] = sys.bonds.live(b);
+    n_axial += axial[b];
+  }
 }
 
 template <int D>
