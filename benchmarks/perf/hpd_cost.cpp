@@ -23,8 +23,8 @@ double seconds_per_call(pd::Model<3>& model, pd::System<3>& sys, int calls) {
 }  // namespace
 
 nlohmann::json hpd_cost(const Options& o) {
-  // 8³ sites per refine step, at most 16³: the nD law stores ~0.25 MB of sub-horizon per
-  // particle at δ = 3.015 Δx (16³ = 4096 particles, ~1 GB), the other drivers' 60³ would not fit.
+  // 8³ sites per refine step, at most 16³: the nD law stores ~0.4 MB of sub-horizon per particle
+  // at δ = 3.015Δx (16³ = 4096 particles, ~1.7 GB); the other drivers' 60³ would not fit.
   const int n = std::min(8 * o.refine, 16);
   fmt::print("HPD cost: hpd (linear_elastic, axial_1d) against lps on a {}³ cube, 1 thread, {} repetitions\n", n,
              o.reps);
@@ -51,13 +51,13 @@ nlohmann::json hpd_cost(const Options& o) {
   omp_set_num_threads(before);
   const Ratio r_nd = ratio_of_medians(t_nd, t_lps), r_axial = ratio_of_medians(t_axial, t_lps);
   const double sides = static_cast<double>(sys.families.n_bonds());
-  const double entries = static_cast<double>(nd.sub_horizon().point.size());
+  const double slots = static_cast<double>(nd.sub_horizon().point.size());
   fmt::print(
-      "  per bond side against lps ({:.3g} bond sides, {:.3g} sub-horizon entries): linear_elastic {:.3g}× "
+      "  per bond side against lps ({:.3g} bond sides, {:.3g} sub-horizon slots): linear_elastic {:.3g}× "
       "[{:.3g}, {:.3g}], axial_1d {:.3g}× [{:.3g}, {:.3g}]\n",
-      sides, entries, r_nd.value, r_nd.lo, r_nd.hi, r_axial.value, r_axial.lo, r_axial.hi);
+      sides, slots, r_nd.value, r_nd.lo, r_nd.hi, r_axial.value, r_axial.lo, r_axial.hi);
   return {{"bond_sides", sides},
-          {"sub_horizon_entries", entries},
+          {"sub_horizon_slots", slots},
           {"particles", sys.n_real()},
           {"seconds_per_evaluation", {{"lps", t_lps}, {"hpd_linear_elastic", t_nd}, {"hpd_axial_1d", t_axial}}},
           {"ratio_linear_elastic", to_json(r_nd)},

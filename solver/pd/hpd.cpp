@@ -166,35 +166,41 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
   if (sub_.stale(sys)) sub_.update(sys, min_points_, end_weight_);
   auto& p = sys.particles;
   const auto fam = sys.family_view();
-#pragma omp parallel for schedule(static)
-  for (Index k = 0; k < fam.n_owners; ++k) {
-    const Index i = fam.particle(k);
-    double w = 0.0;
-    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
-      if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
-        bond_p_[b] = Mat<D>::Zero();
-        continue;
+  // One parallel region, two loops (the barrier between them is the for's): a fork less per
+  // evaluation, which counts in the many small steps of the conservation gates.
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (Index k = 0; k < fam.n_owners; ++k) {
+      const Index i = fam.particle(k);
+      double w = 0.0;
+      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+        if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
+          bond_p_[b] = Mat<D>::Zero();
+          continue;
+        }
+        Mat<D> H = Mat<D>::Zero();
+        // Column by column: the outer-product expression made GCC spill the product to the stack and
+        // reload it across two stores, a store-forwarding stall per entry (3× slower).
+        for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
+          const Vec<D>& u = p.u[sub_.point[e]];
+          for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
+        }
+        double psi = 0.0;
+        const Mat<D> S = second_piola(sys, b, H, psi);
+        bond_p_[b] = bond_weight_[b] * (S + H * S);  // V_i a_ij F S
+        w += bond_weight_[b] / p.volume[i] * psi;
       }
-      Mat<D> H = Mat<D>::Zero();
-      // Column by column: the outer-product expression made GCC spill the product to the stack and
-      // reload it across two stores, a store-forwarding stall per entry (3× slower).
-      for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
-        const Vec<D>& u = p.u[sub_.point[e]];
-        for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
-      }
-      double psi = 0.0;
-      const Mat<D> S = second_piola(sys, b, H, psi);
-      bond_p_[b] = bond_weight_[b] * (S + H * S);  // V_i a_ij F S
-      w += bond_weight_[b] / p.volume[i] * psi;
+      if (req.energy) (*req.energy)[i] = w;
     }
-    if (req.energy) (*req.energy)[i] = w;
-  }
-#pragma omp parallel for schedule(static)
-  for (Index k = 0; k < fam.n_owners; ++k) {
-    const Index i = fam.particle(k);
-    Vec<D> f = Vec<D>::Zero();
-    for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) f -= bond_p_[sub_.at_bond[q]] * sub_.at_coef[q];
-    p.f[i] = f / p.volume[i];
+#pragma omp for schedule(static)
+    for (Index k = 0; k < fam.n_owners; ++k) {
+      const Index i = fam.particle(k);
+      Vec<D> f = Vec<D>::Zero();
+      for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q)
+        f -= bond_p_[sub_.at_bond[q]] * sub_.at_coef[q];
+      p.f[i] = f / p.volume[i];
+    }
   }
 }
 
