@@ -16,8 +16,8 @@
 namespace pdmpm::pd {
 namespace {
 
-// 3D blocks use δ = 2.015 Δx: a 3.015 Δx family stores ~6000 sub-horizon entries per particle
-// (~0.25 MB), too many for a unit test's 10⁴ particles; 2D keeps the default 3.015 Δx.
+// 3D blocks use δ = 2.015 Δx: a 3.015 Δx family stores ~6000 sub-horizon slots per particle
+// (~0.4 MB), too many for a unit test's 10⁴ particles; 2D keeps the default 3.015 Δx.
 template <int D>
 System<D> block(core::Setting s, double nu, int sites, HpdLaw law = HpdLaw::linear_elastic) {
   test::BlockSpec spec;

@@ -109,7 +109,7 @@ void incremental_equals_full(int sites, double horizon_ratio) {
   }
 }
 
-// 3D at δ = 2.015 Δx keeps the test small (a 3.015 Δx family stores ~0.25 MB per particle); the
+// 3D at δ = 2.015 Δx keeps the test small (a 3.015 Δx family stores ~0.4 MB per particle); the
 // rule does not depend on δ.
 TEST(SubHorizon, IncrementalRebuildEqualsAFullBuildBitForBit2D) { incremental_equals_full<2>(14, 3.015); }
 TEST(SubHorizon, IncrementalRebuildEqualsAFullBuildBitForBit3D) { incremental_equals_full<3>(8, 2.015); }
