@@ -2,7 +2,7 @@
 # One command for the performance numbers of issue 6: install dependencies,
 # configure with benchmarks on, build, run the Google Benchmark suite (JSON to
 # build/results/bench/), run the performance driver (memory per bond, kernel
-# thread scaling and roofline, the cost of plasticity, the MPM step against PD by
+# thread scaling and roofline, the cost of plasticity and of hpd, the MPM step against PD by
 # phase, pdmpm next to LAMMPS; build/results/bench/perf/,
 # gates of the "performance" report section), then regenerate the report.
 #

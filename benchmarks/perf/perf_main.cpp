@@ -1,7 +1,7 @@
 // pdmpm_perf: the performance driver of issue 6, in one process run —
 //   memory per bond (memory_per_bond.hpp), the force kernels' thread scaling and
-//   roofline (kernel_scaling.hpp), the cost of plasticity (plastic_cost.hpp),
-//   the MPM step against PD (mpm_step.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
+//   roofline (kernel_scaling.hpp), the cost of plasticity (plastic_cost.hpp), of the stabilized
+//   hybrid PD model (hpd_cost.hpp), the MPM step against PD (mpm_step.hpp), and pdmpm next to LAMMPS' peri/pmb and peri/lps
 //   (lammps_side_by_side.hpp).
 // Raw results: <results>/bench/perf/*.json; targets: gates of the report's
 // "performance" problem; plots and tables: <results>/data/performance/.
@@ -20,6 +20,7 @@
 #include "benchmarks/perf/perf_evidence.hpp"
 #include "benchmarks/perf/perf_output.hpp"
 #include "benchmarks/perf/mpm_step.hpp"
+#include "benchmarks/perf/hpd_cost.hpp"
 #include "benchmarks/perf/plastic_cost.hpp"
 #include "solver/pd/kernels/bond_kernels.hpp"
 #include "verification/support/provenance.hpp"
@@ -38,7 +39,7 @@ std::string load_average() {
 int main(int argc, char** argv) {
   using namespace pdmpm::perf;
   Options o;
-  std::string parts = "memory,kernels,plastic,mpm,lammps";
+  std::string parts = "memory,kernels,plastic,hpd,mpm,lammps";
   CLI::App app{"pdmpm performance driver (issue 6): memory per bond, kernel scaling and roofline, LAMMPS side by side"};
   app.add_option("--refine", o.refine, "problem size: lattice refinement of LAMMPS' example target (3: 1e7 bond sides)")
       ->check(CLI::Range(1, 8));
@@ -46,7 +47,7 @@ int main(int argc, char** argv) {
   app.add_option("--steps", o.steps, "time steps per LAMMPS-comparison repetition")->check(CLI::Range(1, 100000));
   app.add_option("--kernel-calls", o.kernel_calls, "force evaluations per kernel timing sample")
       ->check(CLI::Range(1, 1000));
-  app.add_option("--parts", parts, "comma-separated subset of memory,kernels,plastic,lammps");
+  app.add_option("--parts", parts, "comma-separated subset of memory,kernels,plastic,hpd,mpm,lammps");
   CLI11_PARSE(app, argc, argv);
   o.results = pdmpm::test::results_dir();
   o.parts.clear();
@@ -54,8 +55,8 @@ int main(int argc, char** argv) {
     b = parts.find(',', a);
     if (b == std::string::npos) b = parts.size();
     const std::string p = parts.substr(a, b - a);
-    if (p != "memory" && p != "kernels" && p != "plastic" && p != "mpm" && p != "lammps") {
-      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, plastic, mpm, lammps)\n", p);
+    if (p != "memory" && p != "kernels" && p != "plastic" && p != "hpd" && p != "mpm" && p != "lammps") {
+      fmt::print(stderr, "pdmpm_perf: --parts: unknown part \"{}\" (memory, kernels, plastic, hpd, mpm, lammps)\n", p);
       return 2;
     }
     o.parts.insert(p);
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
       write_result("kernels", c.kernels);
     }
     if (o.parts.count("plastic")) write_result("plastic", plastic_cost(o));
+    if (o.parts.count("hpd")) write_result("hpd", hpd_cost(o));
     if (o.parts.count("mpm")) write_result("mpm", mpm_step(o));
     if (o.parts.count("lammps")) {
       c.lammps.push_back(lammps_side_by_side("pmb", o));

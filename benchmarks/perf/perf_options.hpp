@@ -12,7 +12,7 @@ struct Options {
   int reps = 5;             // interleaved repetitions of every timing
   std::int64_t steps = 20;  // time steps per LAMMPS-comparison repetition
   int kernel_calls = 5;     // force evaluations per kernel timing sample
-  std::set<std::string> parts{"memory", "kernels", "plastic", "mpm", "lammps"};
+  std::set<std::string> parts{"memory", "kernels", "plastic", "hpd", "mpm", "lammps"};
   std::filesystem::path results;  // <results>/bench/perf/*.json, gates/, data/performance/
 };
 

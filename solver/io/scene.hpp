@@ -10,6 +10,7 @@
 
 #include "solver/hybrid/settings.hpp"
 #include "solver/mpm/settings.hpp"
+#include "solver/pd/hpd_options.hpp"
 #include "solver/pd/influence.hpp"
 #include "solver/core/material.hpp"
 #include "solver/pd/partial_volume.hpp"
@@ -188,6 +189,7 @@ struct Scene {
   bool break_after_force = false;          // model.break_timing = "after_force" (LAMMPS' rule)
   bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   bool isotropic_deviatoric = false;       // model.isotropy = "corrected" (plastic PD models)
+  pd::HpdOptions hpd;                      // material.constitutive, model.overlap_min_points (hpd)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;              // set when model = "mpm", and for a hybrid scene
   std::optional<hybrid::Settings> hybrid;  // the [hybrid] table (method hybrid)
@@ -213,6 +215,9 @@ class TomlReader;
 
 // PD parts of a scene (scene_pd.cpp): the PD model's keys of [model].
 void read_pd_model(const TomlReader& model, Scene& s);
+// The hpd model's sub-horizons on this horizon (needs [discretization]): fails on
+// `horizon_key` of `discretization` if an interior bond has too few overlap points.
+void check_hpd_horizon(const TomlReader& discretization, const Scene& s, const std::string& horizon_key);
 
 // MPM parts of a scene (scene_mpm.cpp): the constitutive keys of [material]
 // (read from the material table's own reader) and the [mpm] table.

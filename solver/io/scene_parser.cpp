@@ -102,6 +102,7 @@ void read_discretization(const TomlReader& d, Scene& s) {
   }
   if (auto pv = d.optional_enum<pd::PartialVolume>("partial_volume")) s.partial_volume = *pv;
   s.lattice_origin = d.optional_numbers("lattice_origin", s.dimension);
+  if (ratio || delta) check_hpd_horizon(d, s, ratio ? "horizon_ratio" : "horizon");
   d.finish();
 }
 
@@ -134,8 +135,15 @@ void read_material(const TomlReader& m, Scene& s) {
   const auto K = m.optional_number("bulk_modulus");
   if (E.has_value() == K.has_value()) m.fail("youngs_modulus", "give exactly one of youngs_modulus and bulk_modulus");
   // MPM materials take any ν in (−1, ½); the PD models state their own range.
-  const auto [lo, hi] =
-      s.method == Method::mpm ? std::pair{-1.0, 0.5} : pd::model_info(s.model).poisson_range(s.setting);
+  // hpd with the 1D law is bond-based: ν is PMB's (the Cauchy relation), not a free choice.
+  const bool bond_based = s.model == "hpd" && s.hpd.law == pd::HpdLaw::axial_1d;
+  if (bond_based && m.has("poissons_ratio") && s.setting != core::Setting::bar1d)
+    m.fail("poissons_ratio",
+           "the hpd model with constitutive = \"axial_1d\" is bond-based: ν is fixed (¼, ⅓ in plane stress); remove "
+           "poissons_ratio or use constitutive = \"linear_elastic\"");
+  const auto [lo, hi] = s.method == Method::mpm ? std::pair{-1.0, 0.5}
+      : bond_based                              ? pd::model_info("pmb").poisson_range(s.setting)
+                                                : pd::model_info(s.model).poisson_range(s.setting);
   const auto nu = m.optional_number("poissons_ratio");
   std::ostringstream fixed;
   fixed << lo;
@@ -335,11 +343,11 @@ void read_geometry(const TomlReader& root, Scene& s) {
   if (s.shapes.front().subtract) root.fail("shape[0].operation", "the first shape must add material");
 
   for (const auto& t : root.tables("symmetry")) {
-    if (s.method == Method::pd && pd::model_info(s.model).plastic)
+    if (s.method == Method::pd && !pd::model_info(s.model).symmetry_planes)
       t.fail("",
              "symmetry planes are not supported by the " + s.model +
-                 " model yet (its plastic state lives on bond sides, and a ghost's reverse bond is in no "
-                 "family); model the whole body");
+                 " model yet (a ghost has no family of its own: lps_plastic keeps its plastic state on bond "
+                 "sides, hpd builds each bond's sub-horizon from both ends' families); model the whole body");
     SymmetrySpec sym{t.path(), axis_index(t, "axis", s.dimension), t.number("position")};
     t.finish();
     s.symmetries.push_back(sym);

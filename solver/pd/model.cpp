@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "solver/pd/hpd.hpp"
 #include "solver/pd/lps.hpp"
 #include "solver/pd/lps_plastic.hpp"
 #include "solver/pd/pmb.hpp"
@@ -24,11 +25,12 @@ Tensor6 Model<D>::own_stress(const System<D>&, Index) const {
 namespace {
 
 template <template <int> class M>
-ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic) {
+ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic, bool symmetry_planes) {
   return {std::move(name),
           state_based,
           pair_potential,
           plastic,
+          symmetry_planes,
           [] { return std::make_unique<M<1>>(); },
           [] { return std::make_unique<M<2>>(); },
           [] { return std::make_unique<M<3>>(); }};
@@ -37,9 +39,10 @@ ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plas
 }  // namespace
 
 const std::vector<ModelInfo>& model_table() {
-  //                                   name   state-based pair potential plastic
-  static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false), row<Lps>("lps", true, false, false),
-                                               row<LpsPlastic>("lps_plastic", true, false, true)};
+  //                        name           state-based pair potential plastic symmetry planes
+  static const std::vector<ModelInfo> table = {
+      row<Pmb>("pmb", false, true, false, true), row<Lps>("lps", true, false, false, true),
+      row<LpsPlastic>("lps_plastic", true, false, true, false), row<Hpd>("hpd", true, false, false, false)};
   return table;
 }
 

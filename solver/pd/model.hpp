@@ -76,6 +76,9 @@ struct ModelInfo {
   // A pair potential fixes Poisson's ratio by the setting (Cauchy relation).
   bool pair_potential = false;
   bool plastic = false;
+  // Symmetry planes (ghost particles) work: false where a ghost's missing family matters
+  // (plastic state on bond sides, sub-horizons built from both ends' families).
+  bool symmetry_planes = true;
   std::function<std::unique_ptr<Model<1>>()> make1;
   std::function<std::unique_ptr<Model<2>>()> make2;
   std::function<std::unique_ptr<Model<3>>()> make3;

@@ -11,6 +11,7 @@
 #include "solver/core/particles.hpp"
 #include "solver/pd/bond_state.hpp"
 #include "solver/pd/bond_table.hpp"
+#include "solver/pd/hpd_options.hpp"
 #include "solver/core/material.hpp"
 
 namespace pdmpm::pd {
@@ -42,6 +43,7 @@ struct System {
   // κ chosen so the full stencil's fourth bond moment is isotropic (docs/models/lps_plastic.md);
   // false: the plain lattice sums, whose deviatoric response is cubic.
   bool isotropic_deviatoric = false;
+  HpdOptions hpd;  // the hybrid model's law and sub-horizon size (solver/pd/hpd.hpp)
 
   double spacing() const { return particles.lattice.spacing; }
   Index n_real() const { return particles.n_real; }

@@ -66,6 +66,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
     sys.ductile_failure = s.failure;
   }
   sys.isotropic_deviatoric = s.isotropic_deviatoric;
+  sys.hpd = s.hpd;
 
   std::vector<bc::SymmetryPlane> planes;
   for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});

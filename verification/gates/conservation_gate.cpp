@@ -45,7 +45,7 @@ std::string dim_name(int D) { return D == 2 ? "2d" : "3d"; }
 std::string body_scene(const std::string& model, int D, const std::string& shape, double critical_stretch,
                        const std::string& material_keys) {
   std::string s = "[scene]\nid = \"conservation\"\n[discretization]\ndimension = " + std::to_string(D) +
-      "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
+      "\nspacing = 1e-3\nhorizon_ratio = " + std::to_string(test::gate_horizon_ratio(model, D)) + "\n";
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
   s += shape;
   s += "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n";

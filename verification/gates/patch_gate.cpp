@@ -24,6 +24,7 @@
 
 #include "verification/support/gate.hpp"
 #include "verification/support/patch_check.hpp"
+#include "verification/support/scene_text.hpp"
 
 namespace pdmpm {
 namespace {
@@ -102,6 +103,7 @@ void patch_suite(const std::string& model, core::Setting setting) {
     PatchConfig cfg;
     cfg.model = model;
     cfg.setting = setting;
+    cfg.horizon_ratio = test::gate_horizon_ratio(model, D);  // 2.015 for hpd in 3D: why in scene_text.hpp
     cfg.influence = w;
     cfg.material = material_for(model, setting);
     PatchBlock<D> block(cfg);
@@ -220,7 +222,9 @@ void patch_suite(const std::string& model, core::Setting setting) {
        {"caption",
         "Force scale M|H|_max/Δx, M the longitudinal modulus of the setting. 'max |f| / scale (all)' is what boundary "
         "particles feel (order 1), for comparison. Energy and θ columns: small fields only, symmetrised in ±H, worst "
-        "interior particle. Δx = 1 mm, m = 3.015, partial volume seed001, E = 200 GPa, ν = " +
+        "interior particle. Δx = 1 mm, m = " +
+            std::to_string(test::gate_horizon_ratio(model, D)).substr(0, 5) +
+            ", partial volume seed001, E = 200 GPa, ν = " +
             std::to_string(material_for(model, setting).nu).substr(0, 5) + "."}});
   test::record_data(
       "patch_tests", "summary_" + tag,

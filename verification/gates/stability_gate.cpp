@@ -64,7 +64,8 @@ std::string loaded_scene(const std::string& model, int D, double E, double sigma
   }
   lo += "]", hi += "]", left_hi += "]", right_lo += "]";
   std::string s = "[scene]\nid = \"stability_" + model + "_" + dim_name(D) +
-      "\"\n[discretization]\ndimension = " + std::to_string(D) + "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
+      "\"\n[discretization]\ndimension = " + std::to_string(D) +
+      "\nspacing = 1e-3\nhorizon_ratio = " + std::to_string(test::gate_horizon_ratio(model, D)) + "\n";
   if (D == 2) s += "plane = \"stress\"\nthickness = 1e-3\n";
   if (D == 1) s += "area = 1e-6\n";
   s += "[[shape]]\ntype = \"box\"\nmin = " + lo + "\nmax = " + hi + "\n";
@@ -92,7 +93,8 @@ void bounded_at_09() {
     std::string shape = D == 2 ? "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [0.016, 0.012]\n"
                                : "[[shape]]\ntype = \"box\"\nmin = [0, 0, 0]\nmax = [0.007, 0.006, 0.006]\n";
     std::string text = "[scene]\nid = \"bounded\"\n[discretization]\ndimension = " + std::to_string(D) +
-        "\nspacing = 1e-3\nhorizon_ratio = 3.015\n" + (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
+        "\nspacing = 1e-3\nhorizon_ratio = " + std::to_string(test::gate_horizon_ratio(model, D)) + "\n" +
+        (D == 2 ? "plane = \"stress\"\nthickness = 1e-3\n" : "") + shape +
         "[material]\ndensity = 7850\nyoungs_modulus = 200e9\n" +
         (pd::model_info(model).pair_potential ? "" : "poissons_ratio = 0.3\n") + test::elastic_range_keys(model) +
         "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";

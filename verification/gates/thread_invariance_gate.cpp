@@ -25,7 +25,7 @@ using nlohmann::json;
 // driven into each other at 2 × 100 m/s (2D) / 2 × 150 m/s (3D): contact pushes them apart and bonds break (s₀ = 1e-3).
 std::string impact_scene(const std::string& model, int D) {
   std::string s = "[scene]\nid = \"threads\"\n[discretization]\ndimension = " + std::to_string(D) +
-                  "\nspacing = 1e-3\nhorizon_ratio = 3.015\n";
+      "\nspacing = 1e-3\nhorizon_ratio = " + std::to_string(test::gate_horizon_ratio(model, D)) + "\n";
   if (D == 2) {
     s += "plane = \"strain\"\nthickness = 1e-3\n";
     s += "[[shape]]\ntype = \"box\"\nmin = [0, 0]\nmax = [0.012, 0.016]\n";

@@ -9,14 +9,19 @@
 
 namespace pdmpm::test {
 
-double interior_margin(const std::string& model, double delta) { return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta; }
+double interior_margin(const std::string& model, double delta) {
+  return (pd::model_info(model).state_based ? 2.0 : 1.0) * delta;
+}
 
 double default_measure(core::Setting s) {
   switch (s) {
-    case core::Setting::bar1d: return 1e-6;
+    case core::Setting::bar1d:
+      return 1e-6;
     case core::Setting::plane_stress:
-    case core::Setting::plane_strain: return 1e-3;
-    case core::Setting::solid3d: return 1.0;
+    case core::Setting::plane_strain:
+      return 1e-3;
+    case core::Setting::solid3d:
+      return 1.0;
   }
   return 1.0;
 }
@@ -157,6 +162,16 @@ double PatchBlock<D>::lattice_energy(Index i, const Eigen::Matrix3d& eps3) const
     }
     return 0.5 * k.kappa * theta * theta + 0.5 * k.B * dev / m;
   }
+  if (cfg_.model == "hpd") {
+    // Every bond's fitted strain is ε (exact for affine fields) and the bond weights sum to 1:
+    // W = ½ λ (tr ε)² + G ε:ε, with λ* = Eν/(1 − ν²) in plane stress (docs/models/hpd.md).
+    const auto& m = sys_.material;
+    const double lambda = sys_.setting == core::Setting::plane_stress ? m.E * m.nu / (1.0 - m.nu * m.nu)
+        : D == 1                                                      ? 0.0
+                                                                      : m.lame();
+    const double G = D == 1 ? 0.5 * m.E : m.shear();  // a bar: W = ½ E ε²
+    return 0.5 * lambda * eps.trace() * eps.trace() + G * (eps.array() * eps.array()).sum();
+  }
   return not_measured;
 }
 
@@ -220,7 +235,8 @@ PatchResult PatchBlock<D>::affine(const Eigen::Matrix3d& H, bool small) {
     const double pred = lattice_energy(i, eps);
     const double perr = pred / W_cl - 1.0;
     if (std::isnan(pred) || std::abs(perr) >= std::abs(r.predicted_error)) r.predicted_error = perr;
-    r.prediction_mismatch = std::isnan(pred) ? not_measured : std::max(r.prediction_mismatch, std::abs(w - pred) / W_cl);
+    r.prediction_mismatch =
+        std::isnan(pred) ? not_measured : std::max(r.prediction_mismatch, std::abs(w - pred) / W_cl);
   }
   return r;
 }

@@ -38,6 +38,10 @@ std::string elastic_range_keys(const std::string& model) {
   return pd::model_info(model).plastic ? "yield_stress = 1e30\ntangent_modulus = 0\n" : "";
 }
 
+double gate_horizon_ratio(const std::string& model, int dimension) {
+  return model == "hpd" && dimension == 3 ? 2.015 : 3.015;
+}
+
 std::string flowing_keys(const std::string& model) {
   return pd::model_info(model).plastic ? "yield_stress = 1e6\ntangent_modulus = 2e9\n" : "";
 }

@@ -1,0 +1,219 @@
+#include "solver/pd/hpd.hpp"
+
+#include <stdexcept>
+
+#include "solver/pd/bond_kinematics.hpp"
+#include "solver/pd/constants.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+void Hpd<D>::initialise(const System<D>& sys) {
+  law_ = sys.hpd.law;
+  setting_ = sys.setting;
+  min_points_ = sys.hpd.min_points(D);
+  end_weight_ = sys.hpd.end_weight;
+  const auto& m = sys.material;
+  young_ = m.E;
+  shear_ = m.shear();
+  // Plane stress: σ_zz = 0 eliminates ε_zz, λ* = 2λG/(λ + 2G) = Eν/(1 − ν²).
+  lambda_ = sys.setting == core::Setting::plane_stress ? m.E * m.nu / (1.0 - m.nu * m.nu) : m.lame();
+  axial_modulus_ = sys.setting == core::Setting::plane_strain ? m.E / (1.0 - m.nu * m.nu) : m.E;
+  if (law_ == HpdLaw::axial_1d) {
+    c_ = pmb_micromodulus(sys.influence, sys.setting, sys.material, sys.delta, sys.measure);
+    return;
+  }
+  if (const auto why = sub_horizon_shortfall(sys.families.stencil, min_points_); !why.empty())
+    throw std::invalid_argument("hpd: " + why);
+  inv_m_.assign(sys.particles.n_real, 0.0);
+  bond_weight_.assign(sys.families.n_bonds(), 0.0);
+  for (Index i = 0; i < sys.particles.n_real; ++i) set_weighted_volume(sys, i);
+  bond_p_.assign(sys.families.n_bonds(), Mat<D>::Zero());
+  sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);
+}
+
+template <int D>
+void Hpd<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
+  if (law_ == HpdLaw::axial_1d) return;
+  for (Index i : changed) set_weighted_volume(sys, i);
+  sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);  // the reference family changed
+}
+
+template <int D>
+void Hpd<D>::set_weighted_volume(const System<D>& sys, Index i) {
+  double m = 0.0;  // Σ ω β |ξ| V_j over the reference family
+  sys.for_each_bond(i, BondSet::reference, [&](BondIndex, Index j, int k) {
+    m += sys.table.weight[k] * sys.table.length[k] * sys.particles.volume[j];
+  });
+  inv_m_[i] = m > 0.0 ? 1.0 / m : 0.0;  // a particle without bonds stores no energy
+  const auto& t = sys.table;
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+    const int k = sys.families.shape[b];
+    bond_weight_[b] = sys.particles.volume[i] * t.weight[k] * t.length[k] *
+        sys.particles.volume[sys.families.neighbor[b]] * inv_m_[i];
+  }
+}
+
+template <int D>
+double Hpd<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
+  const auto& t = sys.table;
+  double sum = 0.0;
+  if (law_ == HpdLaw::axial_1d) {
+    sys.for_each_live_bond(
+        i, [&](BondIndex, Index j, int k) { sum += c_ * t.weight[k] / t.length[k] * sys.particles.volume[j]; });
+    return sum;
+  }
+  // Largest eigenvalue of C on symmetric tensors: dλ + 2G (volumetric) or 2G (deviatoric); a bar: E.
+  const double hooke = D == 1 ? young_ : std::max(std::abs(D * lambda_ + 2.0 * shear_), 2.0 * shear_);
+  const double modulus = std::max(hooke, axial_modulus_);
+  for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) {
+    const BondIndex b = sub_.at_bond[q];
+    double row = 0.0;
+    for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l) row += sub_.coef[l].norm();
+    sum += bond_weight_[b] * sub_.at_coef[q].norm() * row;
+  }
+  return 0.5 * modulus * sum / sys.particles.volume[i];
+}
+
+template <int D>
+std::int64_t Hpd<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
+  if (req.energy) req.energy->assign(sys.particles.n_real, 0.0);
+  std::int64_t newly = 0;
+  if (req.break_bonds && !req.break_after_force) newly += break_bonds(sys, req.critical_stretch, false);
+  if (law_ == HpdLaw::axial_1d)
+    axial_forces(sys, req);
+  else
+    midpoint_forces(sys, req);
+  if (req.break_bonds && req.break_after_force) newly += break_bonds(sys, req.critical_stretch, true);
+  return newly;
+}
+
+// The critical-stretch rule on each owner's own bond sides (s is symmetric, so both sides of
+// a bond break in the same evaluation): s ≥ s₀ before the force, s > s₀ after it.
+template <int D>
+std::int64_t Hpd<D>::break_bonds(System<D>& sys, double s0, bool after_force) const {
+  const auto& p = sys.particles;
+  const auto& t = sys.table;
+  const auto fam = sys.family_view();
+  std::int64_t broken = 0;
+#pragma omp parallel for schedule(static) reduction(+ : broken)
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+      if (!sys.bonds.live(b)) continue;
+      const int s = sys.families.shape[b];
+      const double e = deform<D>(t.xi[s], t.length[s], p.u[sys.families.neighbor[b]] - p.u[i]).e;
+      const double limit = s0 * t.length[s];
+      if (after_force ? e > limit : e >= limit) {
+        sys.bonds.flags.trial[b] |= kBondBroken;
+        ++broken;
+      }
+    }
+  }
+  return broken;
+}
+
+// axial_1d: f_i = Σ_j c ω β s V_j y/|y|, W_i = ¼ Σ_j c ω β s² |ξ| V_j (the 1D law's energy ½E_b s²
+// over the bond areas).
+template <int D>
+void Hpd<D>::axial_forces(System<D>& sys, const ForceRequest& req) const {
+  auto& p = sys.particles;
+  const auto& t = sys.table;
+  const auto fam = sys.family_view();
+#pragma omp parallel for schedule(static)
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
+    Vec<D> f = Vec<D>::Zero();
+    double w = 0.0;
+    sys.for_each_live_bond(i, [&](BondIndex, Index j, int s) {
+      const auto g = deform<D>(t.xi[s], t.length[s], p.u[j] - p.u[i]);
+      const double stretch = g.e / t.length[s], cw = c_ * t.weight[s] * p.volume[j];
+      f += cw * stretch / g.l * g.y;
+      w += 0.25 * cw * stretch * stretch * t.length[s];
+    });
+    p.f[i] = f;
+    if (req.energy) (*req.energy)[i] = w;
+  }
+}
+
+template <int D>
+Mat<D> Hpd<D>::second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, double& psi) const {
+  // Ẽ = ½(FᵀF − I) = ½(H + Hᵀ + HᵀH), without the cancellation of I at small strain.
+  // Entry by entry: as an expression GCC stored the product in halves and reloaded it whole, a
+  // store-forwarding stall that made this the dearest line of a 3D step at δ = 2Δx.
+  Mat<D> strain;
+  for (int a = 0; a < D; ++a)
+    for (int c = 0; c < D; ++c) strain(a, c) = 0.5 * (H(a, c) + H(c, a) + H.col(a).dot(H.col(c)));
+  if (sub_.axial[b]) {  // fallback: the bond's own Green strain along it, uniaxial stress
+    const Vec<D> n = sys.table.xi[sys.families.shape[b]] / sys.table.length[sys.families.shape[b]];
+    const double enn = n.dot(strain * n);
+    psi = 0.5 * axial_modulus_ * enn * enn;
+    return axial_modulus_ * enn * n * n.transpose();
+  }
+  Mat<D> S;
+  if constexpr (D == 1)
+    S = young_ * strain;  // a bar: uniaxial stress
+  else
+    S = lambda_ * strain.trace() * Mat<D>::Identity() + 2.0 * shear_ * strain;
+  psi = 0.5 * (S.array() * strain.array()).sum();
+  return S;
+}
+
+// Pass 1: every live bond side's P = F S, weighted by V_i a_ij; pass 2: each owner gathers
+// −P c_k over the sub-horizon entries that name it.
+template <int D>
+void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
+  if (sub_.stale(sys)) sub_.update(sys, min_points_, end_weight_);
+  auto& p = sys.particles;
+  const auto fam = sys.family_view();
+  // One parallel region, two loops (the barrier between them is the for's): a fork less per
+  // evaluation, which counts in the many small steps of the conservation gates.
+#pragma omp parallel
+  {
+#pragma omp for schedule(static)
+    for (Index k = 0; k < fam.n_owners; ++k) {
+      const Index i = fam.particle(k);
+      double w = 0.0;
+      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+        if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
+          bond_p_[b] = Mat<D>::Zero();
+          continue;
+        }
+        Mat<D> H = Mat<D>::Zero();
+        // Column by column: the outer-product expression made GCC spill the product to the stack and
+        // reload it across two stores, a store-forwarding stall per entry (3× slower).
+        for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
+          const Vec<D>& u = p.u[sub_.point[e]];
+          for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
+        }
+        double psi = 0.0;
+        const Mat<D> S = second_piola(sys, b, H, psi);
+        bond_p_[b] = bond_weight_[b] * (S + H * S);  // V_i a_ij F S
+        w += bond_weight_[b] / p.volume[i] * psi;
+      }
+      if (req.energy) (*req.energy)[i] = w;
+    }
+#pragma omp for schedule(static)
+    for (Index k = 0; k < fam.n_owners; ++k) {
+      const Index i = fam.particle(k);
+      Vec<D> f = Vec<D>::Zero();
+      for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q)
+        f -= bond_p_[sub_.at_bond[q]] * sub_.at_coef[q];
+      p.f[i] = f / p.volume[i];
+    }
+  }
+}
+
+template <int D>
+Mat<D> Hpd<D>::bond_averaged_stress(const System<D>& sys, Index i) const {
+  Mat<D> s = Mat<D>::Zero();
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    if (sys.bonds.live(b)) s += bond_p_[b];
+  return s / sys.particles.volume[i];
+}
+
+template class Hpd<1>;
+template class Hpd<2>;
+template class Hpd<3>;
+
+}  // namespace pdmpm::pd

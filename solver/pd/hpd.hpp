@@ -1,0 +1,91 @@
+#pragma once
+// Stabilized hybrid peridynamics (HPD; "A stabilized hybrid peridynamic method compatible with
+// constitutive models of different dimensions", Soil Dyn. Earthq. Eng. 2023; docs/models/hpd.md).
+// Every bond i→j carries the state of a constitutive model at its midpoint. Two laws
+// (System::hpd.law):
+//
+// axial_1d — the paper's reduction to bond-based PD: a 1D law σ = E_b s on the bond's stretch
+// s = (|y| − |ξ|)/|ξ|, no shear, acting along the deformed bond y/|y| over the bond area
+// A_ij = 2ωβ|ξ|V_j/m (m = Σ ωβ|ξ|V of a full family). The force density
+//   f_i = Σ_j (2E_b/m) ω β s V_j y/|y|
+// is PMB's with c = 2E_b/m; HPD takes PMB's calibrated c (solver/pd/constants.hpp), so ν is
+// PMB's (¼, ⅓ in plane stress) and this law equals PMB (verification/unit/pd/hpd_test.cpp).
+//
+// linear_elastic — the nD law on the midpoint deformation. The deformation gradient of bond
+// i→j is the least-squares fit over its sub-horizon (the overlap of the two horizons,
+// solver/pd/sub_horizon.hpp): F_ij = I + Σ_l u_l ⊗ c_l. The stored energy is
+//   E = Σ_i V_i W_i,   W_i = Σ_j a_ij ψ(F_ij),   a_ij = ω β |ξ| V_j / m_i,  m_i = Σ_j ω β |ξ| V_j
+// (sums over live bonds; m_i over the reference family), with ψ the Saint Venant–Kirchhoff
+// energy ½ S:Ẽ, Ẽ = ½(FᵀF − I), S = C:Ẽ, C Hooke's tensor of the setting (plane stress:
+// λ* = 2λG/(λ + 2G)); for small strains this is Hooke's law, and ψ(RF) = ψ(F), so rigid
+// rotations cost nothing and angular momentum is kept. The force is the exact gradient,
+//   f_k = −(1/V_k) ∂E/∂u_k = −(1/V_k) Σ_{bonds i→j whose sub-horizon holds k} V_i a_ij P_ij c_k,
+// P = F S: each bond spreads its force over its sub-horizon, the paper's "stress times the
+// bond's direction and area" distributed so that Verlet conserves energy (the paper applies
+// it at the two ends only, which makes the stiffness non-symmetric: docs/models/hpd.md).
+//
+// Area normalisation (why a_ij): a homogeneous deformation F gives F_ij = F on every bond
+// (the fit is exact for affine fields), so W_i = ψ(F) Σ_j a_ij; W_i = ψ(F), the constitutive
+// energy, exactly when Σ_j a_ij = 1 over the intact family, which m_i achieves for every
+// particle, at boundaries too. The stress follows: the virial of the bond's forces about its
+// sub-horizon is Σ_l (V_i a_ij P c_l) ⊗ (x_l − x̄) = V_i a_ij P (Σ_l c_l ⊗ (x_l − x̄) = K⁻¹K = I),
+// so particle i's PD stress Σ_j a_ij P_ij = P(F), the constitutive stress, to round-off; the
+// weight ω β |ξ| is the one under which axial_1d above is the same sum with the 1D law.
+// Interior force of an affine field: the bonds through k come in pairs mirrored through x_k with
+// opposite c_k and equal a (the same m), so f_k = 0 for particles 2δ inside the body.
+//
+// Zero-energy modes: for a bond with an odd lattice offset the checkerboard u = (−1)^Σx a is
+// odd about the bond midpoint, so its sub-horizon fit sees a gradient and the bond resists;
+// a particle-centred (correspondence) gradient sees the mode even about x_i and gives zero.
+// A plain fit averages the mode over the sub-horizon and resists weakly; weighting the bond's
+// ends (HpdOptions::end_weight) ties the fit to the bond's own stretch, as in the 1D law.
+//
+// Damage: a bond breaks at the critical stretch as in the other models; when the live bonds
+// change, the sub-horizons they reach are fitted again, so points across a crack leave every
+// fit. Bonds whose
+// sub-horizon is too small or flat use the axial fallback: ψ = ½ E₁ Ẽ_nn², Ẽ_nn = n·Ẽ·n, with
+// E₁ the setting's uniaxial-stress modulus (E, or E/(1 − ν²) in plane strain).
+// Ghost particles (symmetry planes) are not supported yet.
+#include "solver/pd/model.hpp"
+#include "solver/pd/sub_horizon.hpp"
+
+namespace pdmpm::pd {
+
+template <int D>
+class Hpd final : public Model<D> {
+ public:
+  std::string name() const override { return "hpd"; }
+  void initialise(const System<D>& sys) override;
+  void refresh(const System<D>& sys, const std::vector<Index>& changed) override;
+  std::int64_t compute_forces(System<D>& sys, const ForceRequest& req) override;
+  // A Gershgorin bound on the linearised stiffness (for the Silling–Askari step and ADR):
+  // ½ Σ_k' |∂f_i/∂u_k'| ≤ ½ Σ_{bonds b whose sub-horizon holds i} (V a_b/V_i) C |c_i| Σ_l |c_l|,
+  // C the largest eigenvalue of Hooke's tensor (or E₁ on an axial bond); PMB's for axial_1d.
+  double stiffness_row_sum(const System<D>& sys, Index i) const override;
+
+  // The model's stress of particle i, Σ_j a_ij P_ij (first Piola–Kirchhoff), of the last
+  // evaluation (linear_elastic).
+  Mat<D> bond_averaged_stress(const System<D>& sys, Index i) const;
+  const SubHorizon<D>& sub_horizon() const { return sub_; }
+
+ private:
+  HpdLaw law_ = HpdLaw::linear_elastic;
+  core::Setting setting_ = core::Setting::solid3d;
+  int min_points_ = D + 1;
+  double end_weight_ = 1.0;
+  double lambda_ = 0.0, shear_ = 0.0, young_ = 0.0, axial_modulus_ = 0.0;
+  double c_ = 0.0;                   // axial_1d: PMB's micromodulus
+  std::vector<double> inv_m_;        // 1/m_i (reference family)
+  std::vector<double> bond_weight_;  // V_i a_ij per bond side
+  std::vector<Mat<D>> bond_p_;       // V_i a_ij P_ij per bond side, last evaluation
+  SubHorizon<D> sub_;
+
+  std::int64_t break_bonds(System<D>& sys, double s0, bool after_force) const;
+  void set_weighted_volume(const System<D>& sys, Index i);
+  void axial_forces(System<D>& sys, const ForceRequest& req) const;
+  void midpoint_forces(System<D>& sys, const ForceRequest& req);
+  // S(Ẽ) and ψ of bond b with F = I + H.
+  Mat<D> second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, double& psi) const;
+};
+
+}  // namespace pdmpm::pd
