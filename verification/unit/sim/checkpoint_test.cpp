@@ -102,6 +102,11 @@ Summaries expect_resume_is_bitwise(const io::Scene& scene, std::int64_t stop_aft
   return out;
 }
 
+void expect_bonds_break_after_the_stop(const Summaries& s) {
+  EXPECT_GT(s.whole["metrics"]["broken_bonds"].get<std::int64_t>(),
+            s.stopped["metrics"]["broken_bonds"].get<std::int64_t>());
+}
+
 // A notched PMB strip pulled apart: bonds break during the run, contact on.
 test::SceneText cracking_strip(const std::string& model) {
   test::SceneText t;
@@ -140,12 +145,22 @@ fields = ["displacement", "velocity", "damage", "stress"]
 
 TEST(Checkpoint, PmbStripWithBreakingAndContactResumesBitwise) {
   const auto scene = cracking_strip("pmb").parse("strip_pmb.toml");
-  expect_resume_is_bitwise(scene, 101, {"position", "displacement", "velocity", "damage", "stress"});
+  const auto s = expect_resume_is_bitwise(scene, 101, {"position", "displacement", "velocity", "damage", "stress"});
+  expect_bonds_break_after_the_stop(s);
 }
 
 TEST(Checkpoint, PlasticLpsStripResumesBitwise) {
   const auto scene = cracking_strip("lps_plastic").parse("strip_lps_plastic.toml");
-  expect_resume_is_bitwise(scene, 120, {"position", "displacement", "damage", "stress"});
+  const auto s = expect_resume_is_bitwise(scene, 120, {"position", "displacement", "damage", "stress"});
+  expect_bonds_break_after_the_stop(s);
+}
+
+// The stabilized hybrid PD: its sub-horizons are refitted where bonds broke; after a resume
+// the first evaluation refits them from the restored bonds, bit for bit as the update would.
+TEST(Checkpoint, HpdStripResumesBitwise) {
+  const auto scene = cracking_strip("hpd").parse("strip_hpd.toml");
+  const auto s = expect_resume_is_bitwise(scene, 77, {"position", "displacement", "damage"});
+  expect_bonds_break_after_the_stop(s);
 }
 
 TEST(Checkpoint, MpmJ2PlateResumesBitwise) {
