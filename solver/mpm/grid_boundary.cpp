@@ -16,9 +16,6 @@ Vec<D> reflect(Vec<D> v, int axis) {
   return v;
 }
 
-// Linear ramp 0 → 1 over ramp_time (a step at t = 0 when ramp_time = 0).
-double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
-
 }  // namespace
 
 template <int D>

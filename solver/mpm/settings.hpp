@@ -3,6 +3,7 @@
 // scene parser can fill key by key. Each field names its key (relative to the
 // scene's MPM table, e.g. "mpm"); validate() checks every value and throws
 // InputError naming the key path and the allowed range.
+#include <algorithm>
 #include <array>
 #include <functional>
 #include <limits>
@@ -78,6 +79,12 @@ struct Nonlocal {
   double length = 0.0;   // "nonlocal.length" ℓ (m), > 0 when enabled
   double m = 1.0;        // "nonlocal.m" over-nonlocal weight, [0, 4]
 };
+
+// The load factor of a boundary velocity or traction with a ramp: linear 0 → 1 over
+// ramp_time (a step at t = 0 when ramp_time = 0).
+inline double ramp(double t, double ramp_time) {
+  return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0;
+}
 
 template <int D>
 struct GridBc {

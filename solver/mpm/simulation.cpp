@@ -58,8 +58,6 @@ void prefetch_ahead(const std::vector<Index>& order, Index k, const Arrays&... a
   if (k + kAhead < static_cast<Index>(order.size())) (prefetch(arrays, order[k + kAhead]), ...);
 }
 
-double ramp(double t, double ramp_time) { return ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / ramp_time)) : 1.0; }
-
 }  // namespace
 
 template <int D>
