@@ -29,8 +29,8 @@
 namespace pdmpm {
 namespace {
 
-using nlohmann::json;
 using core::Setting;
+using nlohmann::json;
 using test::PatchBlock;
 using test::PatchConfig;
 
@@ -121,8 +121,10 @@ void patch_suite(const std::string& model, core::Setting setting) {
                         num(r.energy_error), num(r.predicted_error), num(r.prediction_mismatch)});
         if (!small) continue;
         if (r.theta_error >= worst_theta) worst_theta = r.theta_error, at_theta = label;
-        if (std::isnan(r.prediction_mismatch)) has_prediction = false;
-        else if (r.prediction_mismatch >= worst_mismatch) worst_mismatch = r.prediction_mismatch, at_mismatch = label;
+        if (std::isnan(r.prediction_mismatch))
+          has_prediction = false;
+        else if (r.prediction_mismatch >= worst_mismatch)
+          worst_mismatch = r.prediction_mismatch, at_mismatch = label;
         if (f.name == "isotropic" || (D == 1 && f.name == "stretch")) {
           if (model == "pmb") pmb_iso_error = r.energy_error;
           if (std::abs(r.energy_error) >= worst_iso) worst_iso = std::abs(r.energy_error), at_iso = label;
@@ -138,7 +140,8 @@ void patch_suite(const std::string& model, core::Setting setting) {
     for (const auto& [name, H] : rotations<D>()) {
       const auto r = block.affine(H, false);
       if (r.largest_force >= worst_rotation) worst_rotation = r.largest_force, at_rotation = wn + ", " + name;
-      rows.push_back({wn, name, 1.0, r.interior, r.interior_force, r.largest_force, nullptr, nullptr, nullptr, nullptr});
+      rows.push_back(
+          {wn, name, 1.0, r.interior, r.interior_force, r.largest_force, nullptr, nullptr, nullptr, nullptr});
     }
     summary.push_back({wn, block.sites(), block.system().n_real(), num(pmb_iso_error), num(bound), dev_worst_here});
   }
@@ -149,66 +152,108 @@ void patch_suite(const std::string& model, core::Setting setting) {
       "relative rounding of ≤ (|x|/|ξ|)·u ≤ 16u, and the force is a sum of ≤ 123 (3D) pair terms, each ≤ ~scale: "
       "≤ 123·16·1.1e-16 ≈ 2e-13 of the scale in the worst case. 1e-12 is the task's bound and leaves a margin of 5.";
   test::record_gate({.id = "patch." + tag + ".affine_force",
-                     .claim = "An affine displacement u = Hx (isotropic, stretch, simple shear, deviatoric stretch, general mixed H; |H| = 1e-7 "
-                     "and 0.3) shall give zero force on every interior particle (farther than " +
+                     .claim = "An affine displacement u = Hx (isotropic, stretch, simple shear, deviatoric stretch, "
+                              "general mixed H; |H| = 1e-7 "
+                              "and 0.3) shall give zero force on every interior particle (farther than " +
                          std::string(pd::model_info(model).state_based ? "2δ" : "δ") +
                          " from the boundary), relative to the force scale M|H|/Δx, for all 7 influence functions (" +
                          where + "; worst case: " + at_force + ")",
-                     .measured = worst_force, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs, .tolerance_reason = force_reason, .source = src, .unit = "", .problem = "patch_tests"});
-  test::record_gate({.id = "patch." + tag + ".rotation_force",
-                     .claim = "A rigid rotation by 30°, 90° and 180° shall give zero force at every particle, boundary "
-                     "included, relative to M|R − I|/Δx, for all 7 influence functions (" +
-                         where + "; worst case: " + at_rotation + ")",
-                     .measured = worst_rotation, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
-                     .tolerance_reason = "Every bond keeps its length in exact arithmetic, so each pair term is rounding: the extension "
-                     "(2ξ·η + η·η)/(|ξ+η| + |ξ|) cancels to ≤ ~16u|ξ|; summed over ≤ 123 bonds this is ≤ 2e-13 of "
-                     "the scale. 1e-12 is the task's bound.",
-                     .source = src, .unit = "", .problem = "patch_tests"});
+                     .measured = worst_force,
+                     .expected = 0.0,
+                     .tolerance = 1e-12,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason = force_reason,
+                     .source = src,
+                     .unit = "",
+                     .problem = "patch_tests"});
+  test::record_gate(
+      {.id = "patch." + tag + ".rotation_force",
+       .claim = "A rigid rotation by 30°, 90° and 180° shall give zero force at every particle, boundary "
+                "included, relative to M|R − I|/Δx, for all 7 influence functions (" +
+           where + "; worst case: " + at_rotation + ")",
+       .measured = worst_rotation,
+       .expected = 0.0,
+       .tolerance = 1e-12,
+       .compare = test::Compare::abs,
+       .tolerance_reason =
+           "Every bond keeps its length in exact arithmetic, so each pair term is rounding: the extension "
+           "(2ξ·η + η·η)/(|ξ+η| + |ξ|) cancels to ≤ ~16u|ξ|; summed over ≤ 123 bonds this is ≤ 2e-13 of "
+           "the scale. 1e-12 is the task's bound.",
+       .source = src,
+       .unit = "",
+       .problem = "patch_tests"});
   test::record_gate({.id = "patch." + tag + ".dilatation",
                      .claim = "For a small affine field the dilatation θ (symmetrised in ±H) shall equal tr ε (" +
-                         std::string(D == 3 ? "ε_xx + ε_yy + ε_zz" : D == 2 ? "ε_xx + ε_yy" : "ε_xx") +
+                         std::string(D == 3       ? "ε_xx + ε_yy + ε_zz"
+                                         : D == 2 ? "ε_xx + ε_yy"
+                                                  : "ε_xx") +
                          ") at interior particles, relative to |H| (" + where + "; worst case: " + at_theta + ")",
-                     .measured = worst_theta, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
-                     .tolerance_reason = "θ = (d/m) Σ ω β |ξ|² (n·ε·n) V is exact on a square/cubic lattice for the discrete m (its "
-                     "second moment Σ ω β |ξ|² n⊗n V = (m/d) I by the lattice symmetries); the ±H symmetrisation "
-                     "leaves O(|H|²) = 1e-14 of the nonlinear kinematics; rounding of ≤ 123 terms of relative "
-                     "accuracy 16u is ≤ 2e-13. 1e-12 keeps a margin of 5 over the sum.",
-                     .source = src + "; docs/models/lps.md (c)", .unit = "", .problem = "patch_tests"});
+                     .measured = worst_theta,
+                     .expected = 0.0,
+                     .tolerance = 1e-12,
+                     .compare = test::Compare::abs,
+                     .tolerance_reason =
+                         "θ = (d/m) Σ ω β |ξ|² (n·ε·n) V is exact on a square/cubic lattice for the discrete m (its "
+                         "second moment Σ ω β |ξ|² n⊗n V = (m/d) I by the lattice symmetries); the ±H symmetrisation "
+                         "leaves O(|H|²) = 1e-14 of the nonlinear kinematics; rounding of ≤ 123 terms of relative "
+                         "accuracy 16u is ≤ 2e-13. 1e-12 keeps a margin of 5 over the sum.",
+                     .source = src + "; docs/models/lps.md (c)",
+                     .unit = "",
+                     .problem = "patch_tests"});
   if (has_prediction)
-    test::record_gate({.id = "patch." + tag + ".energy_lattice",
-                       .claim = "For a small affine field the strain energy density (symmetrised in ±H) shall equal its "
-                       "linear lattice prediction, ½Σ½cω β|ξ|(n·ε·n)²V (PMB) or ½κθ² + (B/2m)Σωβ|ξ|²(n·ε·n − γθ)²V "
-                       "(LPS), relative to the classical W, for all fields and 7 influence functions (" +
-                           where + "; worst case: " + at_mismatch + ")",
-                       .measured = worst_mismatch, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
-                       .tolerance_reason = "The symmetrised measurement differs from the linear energy by O(|H|²) = 1e-14 relative; "
-                       "rounding of sums of ≤ 123 terms, each accurate to ~16u, is ≤ 2e-13. A wrong coefficient "
-                       "or moment would be ≥ 1e-3.",
-                       .source = src + "; docs/models/lps.md (b)", .unit = "", .problem = "patch_tests"});
+    test::record_gate(
+        {.id = "patch." + tag + ".energy_lattice",
+         .claim = "For a small affine field the strain energy density (symmetrised in ±H) shall equal its "
+                  "linear lattice prediction, ½Σ½cω β|ξ|(n·ε·n)²V (PMB) or ½κθ² + (B/2m)Σωβ|ξ|²(n·ε·n − γθ)²V "
+                  "(LPS), relative to the classical W, for all fields and 7 influence functions (" +
+             where + "; worst case: " + at_mismatch + ")",
+         .measured = worst_mismatch,
+         .expected = 0.0,
+         .tolerance = 1e-12,
+         .compare = test::Compare::abs,
+         .tolerance_reason = "The symmetrised measurement differs from the linear energy by O(|H|²) = 1e-14 relative; "
+                             "rounding of sums of ≤ 123 terms, each accurate to ~16u, is ≤ 2e-13. A wrong coefficient "
+                             "or moment would be ≥ 1e-3.",
+         .source = src + "; docs/models/lps.md (b)",
+         .unit = "",
+         .problem = "patch_tests"});
   if (model == "lps") {
-    test::record_gate({.id = "patch." + tag + ".energy_isotropic",
-                       .claim = "Under small isotropic expansion the LPS energy density shall equal the classical one to "
-                       "rounding, for all 7 influence functions (discrete weighted volume m; " +
-                           where + "; worst case: " + at_iso + ")",
-                       .measured = worst_iso, .expected = 0.0, .tolerance = 1e-12, .compare = test::Compare::abs,
-                       .tolerance_reason = "With u = s x every bond has e = s|ξ| exactly, so θ = d·s and the deviatoric extension "
-                       "vanishes for the discrete m; what is left is the rounding of u_j − u_i (≤ 16u relative) "
-                       "and of the sums (≤ 123 terms): ≤ 2e-13.",
-                       .source = src + "; docs/models/lps.md (b)", .unit = "", .problem = "patch_tests"});
+    test::record_gate(
+        {.id = "patch." + tag + ".energy_isotropic",
+         .claim = "Under small isotropic expansion the LPS energy density shall equal the classical one to "
+                  "rounding, for all 7 influence functions (discrete weighted volume m; " +
+             where + "; worst case: " + at_iso + ")",
+         .measured = worst_iso,
+         .expected = 0.0,
+         .tolerance = 1e-12,
+         .compare = test::Compare::abs,
+         .tolerance_reason = "With u = s x every bond has e = s|ξ| exactly, so θ = d·s and the deviatoric extension "
+                             "vanishes for the discrete m; what is left is the rounding of u_j − u_i (≤ 16u relative) "
+                             "and of the sums (≤ 123 terms): ≤ 2e-13.",
+         .source = src + "; docs/models/lps.md (b)",
+         .unit = "",
+         .problem = "patch_tests"});
     test::record_gate(
         {.id = "patch." + tag + ".energy_deviatoric",
          .claim = "For any small affine field the LPS energy density error |W/W_classical − 1| shall not exceed the "
-         "anisotropy bound of the lattice's fourth moment (largest |eigenvalue − 1| of (B/2G)·M₄ on unit "
-         "deviatoric strains, M₄ = Σωβ|ξ|²n⊗n⊗n⊗nV/m) for the same influence function (" +
-             where + "; measured: largest excess of |error| over its bound, at " + at_dev +
-             "; largest |error| " + std::to_string(worst_dev) + ", its bound " + std::to_string(dev_bound_at_worst) +
-             ")",
-         .measured = worst_dev_excess, .expected = 1e-12, .tolerance = 0.0, .compare = test::Compare::at_most,
-         .tolerance_reason = "W = ½κ(tr ε)² + (B/2)ε_d:M₄:ε_d exactly for the discrete m (volumetric part exact, no volumetric–deviatoric "
-         "coupling by the lattice symmetries) and W_classical = ½κ(tr ε)² + Gε_d:ε_d, so the relative error is at "
-         "most the Rayleigh-quotient extreme of (B/2G)M₄ − 1 on deviatoric strains; pure stretch and shear of a "
-         "square/cubic lattice (ε_xy and ε_xx = −ε_yy, the two eigen-directions by cubic symmetry) attain it. 1e-12 allows the O(|H|²) and rounding terms of the measurement.",
-         .source = src + "; derivation in patch_check.hpp", .unit = "", .problem = "patch_tests"});
+                  "anisotropy bound of the lattice's fourth moment (largest |eigenvalue − 1| of (B/2G)·M₄ on unit "
+                  "deviatoric strains, M₄ = Σωβ|ξ|²n⊗n⊗n⊗nV/m) for the same influence function (" +
+             where + "; measured: largest excess of |error| over its bound, at " + at_dev + "; largest |error| " +
+             std::to_string(worst_dev) + ", its bound " + std::to_string(dev_bound_at_worst) + ")",
+         .measured = worst_dev_excess,
+         .expected = 1e-12,
+         .tolerance = 0.0,
+         .compare = test::Compare::at_most,
+         .tolerance_reason =
+             "W = ½κ(tr ε)² + (B/2)ε_d:M₄:ε_d exactly for the discrete m (volumetric part exact, no "
+             "volumetric–deviatoric "
+             "coupling by the lattice symmetries) and W_classical = ½κ(tr ε)² + Gε_d:ε_d, so the relative error is at "
+             "most the Rayleigh-quotient extreme of (B/2G)M₄ − 1 on deviatoric strains; pure stretch and shear of a "
+             "square/cubic lattice (ε_xy and ε_xx = −ε_yy, the two eigen-directions by cubic symmetry) attain it. "
+             "1e-12 allows the O(|H|²) and rounding terms of the measurement.",
+         .source = src + "; derivation in patch_check.hpp",
+         .unit = "",
+         .problem = "patch_tests"});
   }
 
   test::record_data(
@@ -231,8 +276,8 @@ void patch_suite(const std::string& model, core::Setting setting) {
       {{"kind", "table"},
        {"title", "Lattice energy errors by influence function, " + where},
        {"columns",
-        {"ω", "sites per side", "particles", "PMB: W/W_classical − 1 (isotropic)",
-         "LPS: deviatoric anisotropy bound", "LPS: largest |W/W_classical − 1| measured"}},
+        {"ω", "sites per side", "particles", "PMB: W/W_classical − 1 (isotropic)", "LPS: deviatoric anisotropy bound",
+         "LPS: largest |W/W_classical − 1| measured"}},
        {"rows", summary},
        {"caption",
         "PMB's isotropic error is the lattice-sum error (lattice_sums section). LPS: the volumetric part is exact; the "

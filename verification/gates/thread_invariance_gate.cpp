@@ -60,8 +60,8 @@ Snapshot<D> run(const std::string& model, int threads, int steps) {
   for (Index i = 0; i < p.n_real; ++i) p.v[i][0] = p.x0[i][0] < split ? speed : -speed;
   Snapshot<D> s;
   s.dt_lanczos = time::lanczos_step<D>(setup.system, *setup.model).dt;
-  const double dt = 0.8 * time::silling_askari_step<D>(setup.system, *setup.model,
-                                                       setup.contact->stiffness_row_sum(setup.system));
+  const double dt =
+      0.8 * time::silling_askari_step<D>(setup.system, *setup.model, setup.contact->stiffness_row_sum(setup.system));
   auto st = sim::make_simulation(setup);
   time::VelocityVerlet<D> stepper(st, dt);
   stepper.start();
@@ -102,19 +102,24 @@ void invariance(json& rows) {
     EXPECT_GT(one.contact_pairs_max, 0) << "no contact: the claim would not cover the contact loop";
     const std::string dim = std::to_string(D) + "d";
     test::record_gate({.id = "thread_invariance." + model + "." + dim,
-                       .claim = "A fracturing impact with contact (" + model + ", " + dim + ", " + std::to_string(steps) +
-                           " steps, " + std::to_string(one.broken_bonds) +
+                       .claim = "A fracturing impact with contact (" + model + ", " + dim + ", " +
+                           std::to_string(steps) + " steps, " + std::to_string(one.broken_bonds) +
                            " bonds broken) shall give bitwise identical displacements, velocities, forces, broken "
                            "flags, damage and Lanczos step with 1 and 2 OpenMP threads (measured: number of values "
                            "that differ in any bit)",
-                       .measured = total, .expected = 0.0, .tolerance = 0.0, .compare = test::Compare::abs,
-                       .tolerance_reason = "Bitwise identity is the claim: every loop gathers per particle in a fixed order and the "
-                       "reductions are integer counts or serial, so no rounding may depend on the thread count.",
-                       .source = "[pdmpm] docs/design.md (gather-only loops, identical results for any thread count)", .unit = "",
+                       .measured = total,
+                       .expected = 0.0,
+                       .tolerance = 0.0,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason =
+                           "Bitwise identity is the claim: every loop gathers per particle in a fixed order and the "
+                           "reductions are integer counts or serial, so no rounding may depend on the thread count.",
+                       .source = "[pdmpm] docs/design.md (gather-only loops, identical results for any thread count)",
+                       .unit = "",
                        .problem = "thread_invariance"});
     rows.push_back({model, dim, static_cast<double>(one.u.size()), steps, one.broken_bonds, one.contact_pairs_max,
-                    static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df),
-                    static_cast<double>(db), static_cast<double>(dd), dt_same ? "identical" : "differs"});
+                    static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df), static_cast<double>(db),
+                    static_cast<double>(dd), dt_same ? "identical" : "differs"});
   }
 }
 
@@ -130,7 +135,8 @@ TEST(FastThreadInvariance, FracturingImpactWithContact) {
                        "v differing", "f differing", "broken flags differing", "damage differing", "Lanczos Δt"}},
                      {"rows", rows},
                      {"caption",
-                      "Two bodies (nearest sites 5Δx / 4Δx apart) closing at 200 m/s (2D) / 300 m/s (3D), s₀ = 1e-3, contact on (c_s = 15c, d = min(0.9|ξ|, "
+                      "Two bodies (nearest sites 5Δx / 4Δx apart) closing at 200 m/s (2D) / 300 m/s (3D), s₀ = 1e-3, "
+                      "contact on (c_s = 15c, d = min(0.9|ξ|, "
                       "1.35Δx)), Δx = 1 mm, m = 3.015, Δt = 0.8 × S&A with the contact bound. 2D: plane strain "
                       "12 × 16 + 8 × 8 mm, 300 steps; 3D: 7 × 8 × 6 + 5 × 4 × 4 mm, 250 steps."}});
 }

@@ -12,18 +12,18 @@ namespace pdmpm::test {
 struct SceneText {
   std::string id = "test";
   int dimension = 2;
-  std::string plane = "stress";   // 2D: "stress" or "strain"
+  std::string plane = "stress";  // 2D: "stress" or "strain"
   double spacing = 1e-3;
-  double horizon_ratio = 3.015;   // 0: no horizon (MPM alone needs none)
-  double thickness = 1e-3;        // 2D plate thickness (1D: cross-section area)
+  double horizon_ratio = 3.015;                         // 0: no horizon (MPM alone needs none)
+  double thickness = 1e-3;                              // 2D plate thickness (1D: cross-section area)
   std::vector<double> min{0.0, 0.0}, max{0.03, 0.015};  // the body
   double density = 7850.0, youngs_modulus = 200e9;
   std::string poissons_ratio = "0.3";  // "" leaves it out (the model fixes ν)
   std::string material_keys;           // further [material] lines, e.g. "critical_stretch = 0.01"
   std::string model = "lps";
-  std::string model_keys;              // further [model] lines
-  std::string time = "steps = 1";      // the [time] table's lines
-  std::string tables;                  // everything after, verbatim
+  std::string model_keys;          // further [model] lines
+  std::string time = "steps = 1";  // the [time] table's lines
+  std::string tables;              // everything after, verbatim
 
   std::string toml() const;
   io::Scene parse(const std::string& file = "test.toml") const;
