@@ -11,6 +11,12 @@
 
 namespace pdmpm::test {
 
+// The steel of the lps_plastic unit tests: σ_y = 1e-5 E keeps every strain small,
+// E_t ≈ E/11 makes the hardening visible on the scale of σ_y.
+inline const core::Elastic kSmallStrainSteel{215e9, 0.33, 7800.0};
+inline constexpr double kSmallStrainYield = 2.15e6;
+inline const core::J2Hardening kSmallStrainHardening{kSmallStrainYield, 20e9};
+
 struct PlasticBlockSpec {
   core::Elastic material{215e9, 0.33, 7800.0};
   core::J2Hardening hardening{340e6, 1.45e9};

@@ -17,17 +17,11 @@
 
 #include "verification/support/command_line.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 std::vector<std::string> split_lines(const std::string& text) {
   std::vector<std::string> lines;
@@ -127,7 +121,7 @@ TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses) {
     const fs::path& seed = demo ? demos[static_cast<std::size_t>(n / 3) % demos.size()]
                                 : others[static_cast<std::size_t>(n) % others.size()];
     std::string what, what2;
-    std::string text = mutator.mutate(read(seed), what);
+    std::string text = mutator.mutate(pdmpm::test::read_text(seed), what);
     if (n % 2) text = mutator.mutate(text, what2), what += "; " + what2;
     const fs::path scene = scratch.path() / ("mutant" + std::to_string(n) + ".toml");
     std::ofstream(scene, std::ios::binary) << text;

@@ -15,23 +15,17 @@
 
 #include "verification/support/command_line.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace {
 
 namespace fs = std::filesystem;
 using pdmpm::test::run_command;
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // The scene `file` with its [time] table's first line replaced (a shorter run),
 // written into `dir`.
 fs::path shortened(const fs::path& file, const std::string& time_line, const fs::path& dir) {
-  std::string text = read(file);
+  std::string text = pdmpm::test::read_text(file);
   text = std::regex_replace(text, std::regex(R"((\[time\]\n)[^\n]*)"), "$1" + time_line,
                             std::regex_constants::format_first_only);
   const fs::path out = dir / file.filename();
@@ -46,7 +40,7 @@ void check_in_paraview(const fs::path& scene, const std::string& tag) {
   const auto r = pdmpm::test::run_pdmpm("run " + run_scene.string() + " --out " + out.string() + " --quiet");
   ASSERT_EQ(r.status, 0) << r.output;
   // What the writer says it wrote: the frames and the point arrays of fields.xdmf.
-  const std::string xdmf = read(out / "fields.xdmf");
+  const std::string xdmf = pdmpm::test::read_text(out / "fields.xdmf");
   const std::regex frame(R"(<Grid Name="step_)"), attribute(R"re(Attribute Name="([a-z_]+)")re");
   const auto frames = std::distance(std::sregex_iterator(xdmf.begin(), xdmf.end(), frame), std::sregex_iterator());
   std::set<std::string> names;

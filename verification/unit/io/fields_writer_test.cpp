@@ -16,12 +16,12 @@
 
 #include "solver/core/error.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace pdmpm::io {
 namespace {
 
 namespace fs = std::filesystem;
-
 
 // ---------------------------------------------------------------------------
 // Reading back with the HDF5 C API (deliberately not through solver/io/hdf5).
@@ -151,9 +151,12 @@ class XmlParser {
   void skip_misc() {
     for (;;) {
       skip_space();
-      if (starts("<?")) skip_until("?>");
-      else if (starts("<!--")) skip_until("-->");
-      else return;
+      if (starts("<?"))
+        skip_until("?>");
+      else if (starts("<!--"))
+        skip_until("-->");
+      else
+        return;
     }
   }
   std::string name() {
@@ -208,7 +211,8 @@ class XmlParser {
       if (quote != '"' && quote != '\'') fail("expected a quoted value");
       const std::size_t end = s_.find(quote, i_ + 1);
       if (end == std::string::npos) fail("unterminated attribute");
-      if (!node.attributes.emplace(key, decode(s_.substr(i_ + 1, end - i_ - 1))).second) fail("repeated attribute " + key);
+      if (!node.attributes.emplace(key, decode(s_.substr(i_ + 1, end - i_ - 1))).second)
+        fail("repeated attribute " + key);
       i_ = end + 1;
     }
     for (;;) {
@@ -241,13 +245,6 @@ std::string trim(const std::string& s) {
   return b == std::string::npos ? "" : s.substr(b, e - b + 1);
 }
 
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 // Resolves an XDMF HDF DataItem against the file: reference "<h5>:<path>",
 // dataset present, same shape, stored type matching NumberType/Precision.
 void expect_data_item_resolves(const XmlNode& item, hid_t file, const std::string& h5_name,
@@ -278,8 +275,11 @@ std::vector<double> pattern(std::size_t count, double seed) {
     const double x = static_cast<double>(k);
     v[k] = seed + 1.0 / (3.0 + x) - 1e-7 * x * x;
   }
-  const double special[] = {-0.0, std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::max(),
-                            -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(),
+  const double special[] = {-0.0,
+                            std::numeric_limits<double>::denorm_min(),
+                            std::numeric_limits<double>::max(),
+                            -std::numeric_limits<double>::infinity(),
+                            std::numeric_limits<double>::quiet_NaN(),
                             0.1};
   for (std::size_t k = 0; k < std::size(special) && k < count; ++k) v[(7 * k + 1) % count] = special[k];
   return v;
@@ -331,14 +331,15 @@ void write_and_check(int dimension, const std::vector<FrameSpec>& frames, const 
     EXPECT_EQ(std::memcmp(&time, &f.time, sizeof time), 0);
     EXPECT_EQ(read_attribute<std::int64_t>(file.id, group, "step", H5T_NATIVE_INT64), f.step);
     EXPECT_EQ(read_attribute<std::int64_t>(file.id, group, "particles", H5T_NATIVE_INT64), n);
-    EXPECT_TRUE(same_bits(read_dataset<double>(file.id, std::string(group) + "/position", H5T_NATIVE_DOUBLE), f.positions));
+    EXPECT_TRUE(
+        same_bits(read_dataset<double>(file.id, std::string(group) + "/position", H5T_NATIVE_DOUBLE), f.positions));
     EXPECT_EQ(dataset_dims(file.id, std::string(group) + "/position"), (std::vector<hsize_t>{hsize_t(n), 3}));
     for (const Field& field : f.fields) {
       const std::string path = std::string(group) + "/" + field.name;
       EXPECT_TRUE(same_bits(read_dataset<double>(file.id, path, H5T_NATIVE_DOUBLE), field.values)) << path;
       const std::vector<hsize_t> dims = field.kind == FieldKind::scalar
-                                            ? std::vector<hsize_t>{hsize_t(n)}
-                                            : std::vector<hsize_t>{hsize_t(n), hsize_t(components(field.kind))};
+          ? std::vector<hsize_t>{hsize_t(n)}
+          : std::vector<hsize_t>{hsize_t(n), hsize_t(components(field.kind))};
       EXPECT_EQ(dataset_dims(file.id, path), dims) << path;
     }
     const auto ids = read_dataset<std::int32_t>(file.id, "/topology/polyvertex_" + std::to_string(n), H5T_NATIVE_INT32);
@@ -348,7 +349,7 @@ void write_and_check(int dimension, const std::vector<FrameSpec>& frames, const 
 
   // XDMF: well-formed, one temporal collection, one uniform grid per frame.
   XmlNode root;
-  ASSERT_NO_THROW(root = XmlParser(read_text(xdmf)).document());
+  ASSERT_NO_THROW(root = XmlParser(test::read_text(xdmf)).document());
   EXPECT_EQ(root.name, "Xdmf");
   EXPECT_EQ(root.attr("Version"), "3.0");
   const XmlNode& collection = root.one("Domain").one("Grid");
@@ -385,7 +386,9 @@ void write_and_check(int dimension, const std::vector<FrameSpec>& frames, const 
       const XmlNode& attribute = *attributes[a];
       EXPECT_EQ(attribute.attr("Name"), field.name);
       EXPECT_EQ(attribute.attr("Center"), "Node");
-      const char* type = field.kind == FieldKind::scalar ? "Scalar" : field.kind == FieldKind::vector ? "Vector" : "Tensor6";
+      const char* type = field.kind == FieldKind::scalar ? "Scalar"
+          : field.kind == FieldKind::vector              ? "Vector"
+                                                         : "Tensor6";
       EXPECT_EQ(attribute.attr("AttributeType"), type);
       const std::string dims = field.kind == FieldKind::scalar ? n : n + " " + std::to_string(components(field.kind));
       expect_data_item_resolves(attribute.one("DataItem"), file.id, "fields.h5", std::string(group) + "/" + field.name,
@@ -432,7 +435,7 @@ TEST(FieldsWriter, DestructorClosesAndWritesXdmf) {
   }
   H5File file(dir.path() / "f.h5");
   EXPECT_GE(file.id, 0);
-  const XmlNode root = XmlParser(read_text(dir.path() / "f.xdmf")).document();
+  const XmlNode root = XmlParser(test::read_text(dir.path() / "f.xdmf")).document();
   EXPECT_EQ(root.one("Domain").one("Grid").all("Grid").size(), 1u);
 }
 
@@ -458,7 +461,8 @@ TEST(FieldsWriter, RejectsInconsistentInput) {
   std::vector<Field> twice = good.fields;
   twice.push_back(twice.front());
   expect_error(5, 1.0, good.positions, twice, "given twice");
-  expect_error(5, 1.0, good.positions, {{"bad name", FieldKind::scalar, std::vector<double>(4)}}, "field name 'bad name'");
+  expect_error(5, 1.0, good.positions, {{"bad name", FieldKind::scalar, std::vector<double>(4)}},
+               "field name 'bad name'");
   expect_error(5, 1.0, good.positions, {{"position", FieldKind::vector, std::vector<double>(12)}}, "reserved");
   expect_error(5, std::nan(""), good.positions, good.fields, "not finite");
   expect_error(-1, 1.0, good.positions, good.fields, "negative");

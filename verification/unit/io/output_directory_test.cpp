@@ -12,24 +12,17 @@
 
 #include "solver/core/error.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace pdmpm::io {
 namespace {
 
 namespace fs = std::filesystem;
 
-
 void write_text(const fs::path& p, const std::string& text) {
   std::ofstream out(p, std::ios::binary);
   out << text;
   ASSERT_TRUE(out.good()) << p;
-}
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 std::set<std::string> entries(const fs::path& dir) {
@@ -76,7 +69,7 @@ TEST(OutputDirectory, AbortLeavesNothingBehind) {
     write_text(dir.path("scratch") / "deep.bin", "x");
   }  // no commit: as if the run had thrown
   EXPECT_EQ(entries(out), (std::set<std::string>{"fields.h5"}));
-  EXPECT_EQ(read_text(out / "fields.h5"), "previous run");
+  EXPECT_EQ(test::read_text(out / "fields.h5"), "previous run");
 }
 
 TEST(OutputDirectory, AbortByExceptionLeavesNothingBehind) {
@@ -105,9 +98,9 @@ TEST(OutputDirectory, CommitMovesFilesReplacingOldOnesAndKeepsOthers) {
   EXPECT_TRUE(dir.committed());
   EXPECT_EQ(moved, (std::vector<fs::path>{out / "fields.h5", out / "summary.json"}));
   EXPECT_EQ(entries(out), (std::set<std::string>{"fields.h5", "notes.txt", "summary.json"}));
-  EXPECT_EQ(read_text(out / "fields.h5"), "new fields");
-  EXPECT_EQ(read_text(out / "summary.json"), "{}");
-  EXPECT_EQ(read_text(out / "notes.txt"), "user's notes");
+  EXPECT_EQ(test::read_text(out / "fields.h5"), "new fields");
+  EXPECT_EQ(test::read_text(out / "summary.json"), "{}");
+  EXPECT_EQ(test::read_text(out / "notes.txt"), "user's notes");
   EXPECT_NE(error_of([&] { dir.commit(); }).find("committed twice"), std::string::npos);
   EXPECT_NE(error_of([&] { (void)dir.path("late.txt"); }).find("after commit"), std::string::npos);
 }
@@ -126,7 +119,7 @@ TEST(OutputDirectory, AFileWhereTheDirectoryShouldBeIsAnError) {
   const std::string message = error_of([&] { OutputDirectory dir(out); });
   EXPECT_NE(message.find("exists and is not a directory"), std::string::npos) << message;
   EXPECT_NE(message.find(out.string()), std::string::npos) << message;
-  EXPECT_EQ(read_text(out), "I am a file");
+  EXPECT_EQ(test::read_text(out), "I am a file");
   // A file on the way to the directory stops creation too.
   EXPECT_NE(error_of([&] { OutputDirectory dir(out / "below"); }).find("cannot create output directory"),
             std::string::npos);

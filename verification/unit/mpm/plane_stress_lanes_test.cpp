@@ -28,7 +28,8 @@ struct Tally {
   int differing = 0, flagged = 0, yielding_unflagged = 0, flagged_elastic = 0;
 };
 
-Material steel(MaterialModel model) {
+// The central-crack plate's steel (the paper's material).
+Material plate_steel(MaterialModel model) {
   Material m;
   m.model = model;
   m.elastic = {215e9, 0.33, 7800.0};
@@ -97,7 +98,7 @@ std::vector<Point> points(double strain, double plastic, int n, unsigned seed) {
 }
 
 TEST(PlaneStressLanes, EqualTheJ2LawBitForBitOnItsElasticPathAndFlagEveryYield) {
-  const Constitutive<2> law(steel(MaterialModel::j2), core::Setting::plane_stress);
+  const Constitutive<2> law(plate_steel(MaterialModel::j2), core::Setting::plane_stress);
   // Strains and plastic strains around the yield strain σ_y/E = 1.6e-3: both paths in
   // the groups; far below it, none yields.
   for (const double strain : {1e-6, 1e-3, 3e-3})
@@ -115,7 +116,7 @@ TEST(PlaneStressLanes, EqualTheJ2LawBitForBitOnItsElasticPathAndFlagEveryYield) 
 }
 
 TEST(PlaneStressLanes, EqualLinearElasticityBitForBitAndNeverFlagIt) {
-  const Constitutive<2> law(steel(MaterialModel::linear_elastic), core::Setting::plane_stress);
+  const Constitutive<2> law(plate_steel(MaterialModel::linear_elastic), core::Setting::plane_stress);
   std::vector<Point> pts = points(1e-2, 1e-3, 4000, 8);  // histories it must ignore
   pts[5].polar.log_U.setZero();                          // a zero strain: signed zeros through ε₃₃ and J
   pts[6].polar.log_U << -0.0, -0.0, -0.0, -0.0;
@@ -125,7 +126,7 @@ TEST(PlaneStressLanes, EqualLinearElasticityBitForBitAndNeverFlagIt) {
 }
 
 TEST(PlaneStressLanes, FlagANonFiniteStrainForTheLaw) {
-  const Constitutive<2> law(steel(MaterialModel::j2), core::Setting::plane_stress);
+  const Constitutive<2> law(plate_steel(MaterialModel::j2), core::Setting::plane_stress);
   std::vector<Point> pts = points(1e-4, 0.0, 8, 9);
   pts[2].polar.log_U(0, 0) = std::nan("");
   PlaneStressLanes lanes{};
@@ -138,10 +139,10 @@ TEST(PlaneStressLanes, FlagANonFiniteStrainForTheLaw) {
 }
 
 TEST(PlaneStressLanes, OnlyPlaneStressJ2AndLinearElasticityHaveThem) {
-  EXPECT_TRUE(Constitutive<2>(steel(MaterialModel::j2), core::Setting::plane_stress).plane_stress_law());
-  EXPECT_FALSE(Constitutive<2>(steel(MaterialModel::j2), core::Setting::plane_strain).plane_stress_law());
-  EXPECT_FALSE(Constitutive<2>(steel(MaterialModel::neo_hookean), core::Setting::plane_stress).plane_stress_law());
-  EXPECT_FALSE(Constitutive<3>(steel(MaterialModel::j2), core::Setting::solid3d).plane_stress_law());
+  EXPECT_TRUE(Constitutive<2>(plate_steel(MaterialModel::j2), core::Setting::plane_stress).plane_stress_law());
+  EXPECT_FALSE(Constitutive<2>(plate_steel(MaterialModel::j2), core::Setting::plane_strain).plane_stress_law());
+  EXPECT_FALSE(Constitutive<2>(plate_steel(MaterialModel::neo_hookean), core::Setting::plane_stress).plane_stress_law());
+  EXPECT_FALSE(Constitutive<3>(plate_steel(MaterialModel::j2), core::Setting::solid3d).plane_stress_law());
 }
 
 }  // namespace

@@ -13,22 +13,20 @@
 namespace pdmpm::pd {
 namespace {
 
-const core::Elastic kSteel{215e9, 0.33, 7800.0};
-const double kYield = 2.15e6;  // σ_y = 1e-5 E: small strains, as in lps_plastic_test.cpp
-const core::J2Hardening kHardening{kYield, 20e9};
-const double kStrainYield = kYield / kSteel.E;
+const double kStrainYield = test::kSmallStrainYield / test::kSmallStrainSteel.E;
 
 test::PlasticBlock<3> block(core::FailureRule rule, double d0, double c) {
-  test::PlasticBlock<3> b({.material = kSteel, .hardening = kHardening, .failure = {true, d0, c, rule}});
+  test::PlasticBlock<3> b(
+      {.material = test::kSmallStrainSteel, .hardening = test::kSmallStrainHardening, .failure = {true, d0, c, rule}});
   b.request.break_bonds = true;
   b.request.critical_stretch = std::numeric_limits<double>::infinity();  // the ductile rule alone
   return b;
 }
 
 Mat<3> uniaxial_like(double eps) {  // the J2 lateral strain of uniaxial stress for a hardening bar
-  const double E = kSteel.E, Et = kHardening.tangent_modulus;
-  const double sigma = eps <= kStrainYield ? E * eps : kYield + Et * (eps - kStrainYield);
-  const double lateral = -kSteel.nu * sigma / E - 0.5 * (eps - sigma / E);
+  const double E = test::kSmallStrainSteel.E, Et = test::kSmallStrainHardening.tangent_modulus;
+  const double sigma = eps <= kStrainYield ? E * eps : test::kSmallStrainYield + Et * (eps - kStrainYield);
+  const double lateral = -test::kSmallStrainSteel.nu * sigma / E - 0.5 * (eps - sigma / E);
   return Vec<3>(eps, lateral, lateral).asDiagonal();
 }
 

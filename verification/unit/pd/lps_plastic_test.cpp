@@ -16,12 +16,9 @@
 namespace pdmpm::pd {
 namespace {
 
-const core::Elastic kSteel{215e9, 0.33, 7800.0};
-const double kYield = 2.15e6;                                      // σ_y = 1e-5 E
-const core::J2Hardening kHardening{kYield, 20e9};  // E_t ≈ E/11: hardening visible on the scale of σ_y
-
 test::PlasticBlock<3> block(bool isotropic = false) {
-  return test::PlasticBlock<3>({.material = kSteel, .hardening = kHardening, .isotropic = isotropic});
+  return test::PlasticBlock<3>(
+      {.material = test::kSmallStrainSteel, .hardening = test::kSmallStrainHardening, .isotropic = isotropic});
 }
 
 TEST(LpsPlastic, BelowYieldItIsElasticLps) {
@@ -48,8 +45,8 @@ TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
   auto& sys = b.sys;
   auto& model = b.model;
   const Index c = b.centre;
-  const double E = kSteel.E, K = kSteel.bulk(), ey = kYield / E;
-  const double H = kHardening.hardening_modulus(E);
+  const double E = test::kSmallStrainSteel.E, K = test::kSmallStrainSteel.bulk(), ey = test::kSmallStrainYield / E;
+  const double H = test::kSmallStrainHardening.hardening_modulus(E);
   double lateral = 0.0, worst_surface = 0.0, worst_volume = 0.0, first_slope = 0.0;
   bool yielded = false;
   const int n = 40;
@@ -61,13 +58,14 @@ TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
     const double ep = (*model.eq_plastic_strain())[c], seq = model.equivalent_stress(c);
     if (ep > 0.0) {
       yielded = true;
-      worst_surface = std::max(worst_surface, std::abs(seq - (kYield + H * ep)) / kYield);
+      worst_surface =
+          std::max(worst_surface, std::abs(seq - (test::kSmallStrainYield + H * ep)) / test::kSmallStrainYield);
     } else {
-      EXPECT_LE(seq, kYield * (1.0 + 1e-12)) << "elastic beyond the yield surface at ε = " << eps;
+      EXPECT_LE(seq, test::kSmallStrainYield * (1.0 + 1e-12)) << "elastic beyond the yield surface at ε = " << eps;
     }
     std::vector<double> theta;
     model.dilatation(sys, theta);
-    worst_volume = std::max(worst_volume, std::abs(3.0 * K * theta[c] - s.trace()) / kYield);
+    worst_volume = std::max(worst_volume, std::abs(3.0 * K * theta[c] - s.trace()) / test::kSmallStrainYield);
   }
   EXPECT_TRUE(yielded);
   EXPECT_LT(worst_surface, 1e-12) << "σ̄ − (σ_y + H ε̄_p) on the yield surface, / σ_y";
@@ -96,8 +94,9 @@ TEST(LpsPlastic, UniaxialStressReturnIsTheJ2Return) {
 // direction, so the homogeneous uniaxial stress path follows the analytic bilinear
 // J2 curve (the 1 % of σ_y), along a lattice axis and along a skew axis.
 TEST(LpsPlastic, CorrectedLatticeFollowsTheBilinearJ2CurveInAnyDirection) {
-  const double E = kSteel.E, nu = kSteel.nu, Et = kHardening.tangent_modulus, ey = kYield / E;
-  auto bilinear = [&](double e) { return e <= ey ? E * e : kYield + Et * (e - ey); };
+  const double E = test::kSmallStrainSteel.E, nu = test::kSmallStrainSteel.nu,
+               Et = test::kSmallStrainHardening.tangent_modulus, ey = test::kSmallStrainYield / E;
+  auto bilinear = [&](double e) { return e <= ey ? E * e : test::kSmallStrainYield + Et * (e - ey); };
   const Mat<3> skew = Eigen::AngleAxisd(0.7, Vec<3>(1.0, 2.0, 3.0).normalized()).toRotationMatrix();
   for (const Mat<3>& R : {Mat<3>(Mat<3>::Identity()), skew}) {
     auto b = block(true);
@@ -109,9 +108,10 @@ TEST(LpsPlastic, CorrectedLatticeFollowsTheBilinearJ2CurveInAnyDirection) {
       const Mat<3> s = b.uniaxial(eps, lateral, R);
       model.accept();
       const double exact = bilinear(eps), ep = eps - exact / E;
-      worst = std::max(worst, std::abs(s(0, 0) - exact) / kYield);
+      worst = std::max(worst, std::abs(s(0, 0) - exact) / test::kSmallStrainYield);
       worst_lateral = std::max(worst_lateral, std::abs(lateral - (-nu * exact / E - 0.5 * ep)) / eps);
-      worst_shear = std::max({worst_shear, std::abs(s(0, 1)) / kYield, std::abs(s(2, 2)) / kYield});
+      worst_shear = std::max(
+          {worst_shear, std::abs(s(0, 1)) / test::kSmallStrainYield, std::abs(s(2, 2)) / test::kSmallStrainYield});
     }
     const bool axis = R.isIdentity();
     // 1 % of σ_y: the bound. Measured far below it (only the O(ε) bond nonlinearity remains).
@@ -129,7 +129,8 @@ TEST(LpsPlastic, PureShearYieldsAtTheVonMisesShearStress) {
   auto& sys = b.sys;
   auto& model = b.model;
   const Index c = b.centre;
-  const double G = kSteel.shear(), tau_y = kYield / std::sqrt(3.0), gamma_y = tau_y / G;
+  const double G = test::kSmallStrainSteel.shear(), tau_y = test::kSmallStrainYield / std::sqrt(3.0),
+               gamma_y = tau_y / G;
   const double step = 0.01 * gamma_y;  // 1 % of γ_y: the resolution of the yield point
   double gamma_first_yield = 0.0, worst_slope = 0.0;
   for (int k = 90; k <= 110; ++k) {  // 0.9 γ_y … 1.1 γ_y
@@ -159,14 +160,15 @@ TEST(LpsPlastic, BarFollowsTheBilinearCurve) {
   test::BlockSpec spec;
   spec.sites = 30;
   spec.setting = core::Setting::bar1d;
-  spec.material = kSteel;
+  spec.material = test::kSmallStrainSteel;
   spec.measure = 1e-6;
   auto sys = test::make_block<1>(spec);
-  sys.hardening = kHardening;
+  sys.hardening = test::kSmallStrainHardening;
   LpsPlastic<1> model;
   model.initialise(sys);
   const Index c = 15;  // ≥ 2δ from both ends
-  const double E = kSteel.E, Et = kHardening.tangent_modulus, ey = kYield / E;
+  const double E = test::kSmallStrainSteel.E, Et = test::kSmallStrainHardening.tangent_modulus,
+               ey = test::kSmallStrainYield / E;
   double worst = 0.0, peak_stress = 0.0;
   auto stretch = [&](double eps) {
     for (Index i = 0; i < sys.n_real(); ++i) sys.particles.u[i] = Vec<1>(eps * sys.particles.x0[i][0]);
@@ -176,9 +178,9 @@ TEST(LpsPlastic, BarFollowsTheBilinearCurve) {
   };
   for (int k = 1; k <= 20; ++k) {
     const double eps = 10.0 * ey * k / 20;
-    const double exact = eps <= ey ? E * eps : kYield + Et * (eps - ey);
+    const double exact = eps <= ey ? E * eps : test::kSmallStrainYield + Et * (eps - ey);
     peak_stress = stretch(eps);
-    worst = std::max(worst, std::abs(peak_stress - exact) / kYield);
+    worst = std::max(worst, std::abs(peak_stress - exact) / test::kSmallStrainYield);
   }
   // 1e-3 of σ_y: only the bond kinematics' O(ε) nonlinearity (ε ≤ 1e-4) separates the two.
   EXPECT_LT(worst, 1e-3);

@@ -22,26 +22,22 @@
 #include "verification/support/hybrid_body.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace pdmpm::sim {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string file_text(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-nlohmann::json summary(const fs::path& dir) { return nlohmann::json::parse(file_text(dir / "summary.json")); }
+nlohmann::json summary(const fs::path& dir) { return nlohmann::json::parse(test::read_text(dir / "summary.json")); }
 
 // history.csv byte for byte; every frame's step, time and datasets bit for bit; the
 // summary's metrics equal.
 void expect_same_outputs(const fs::path& a, const fs::path& b, const std::vector<std::string>& fields) {
-  EXPECT_EQ(file_text(a / "history.csv"), file_text(b / "history.csv"));
+  EXPECT_EQ(test::read_text(a / "history.csv"), test::read_text(b / "history.csv"));
   EXPECT_EQ(summary(a)["metrics"], summary(b)["metrics"]);
   EXPECT_EQ(summary(a)["steps"], summary(b)["steps"]);
-  EXPECT_EQ(file_text(a / "fields.xdmf"), file_text(b / "fields.xdmf"));
+  EXPECT_EQ(test::read_text(a / "fields.xdmf"), test::read_text(b / "fields.xdmf"));
   const test::FieldsReader fa((a / "fields.h5").string()), fb((b / "fields.h5").string());
   ASSERT_EQ(fa.frames().size(), fb.frames().size());
   for (std::size_t k = 0; k < fa.frames().size(); ++k) {
@@ -303,7 +299,7 @@ TEST(Checkpoint, ACheckpointFromAnotherBuildOrDamagedIsRefused) {
       EXPECT_NE(std::string(e.what()).find("written by pdmpm 0000000"), std::string::npos) << e.what();
     }
   }
-  std::string bytes = file_text(file);
+  std::string bytes = test::read_text(file);
   bytes[bytes.size() / 3] ^= 0x01;
   std::ofstream(file, std::ios::binary) << bytes;
   EXPECT_THROW(read_checkpoint(o.out_dir), InputError);

@@ -23,25 +23,12 @@
 #include "verification/support/hybrid_body.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace pdmpm::sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-// Header and last row of history.csv.
-std::map<std::string, std::string> last_history_row(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::map<std::string, std::string> row;
-  std::stringstream h(header), v(last);
-  std::string name, value;
-  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = value;
-  return row;
-}
 
 TEST(HybridScene, DefaultsAndKeys) {
   const auto s = test::hybrid_plate_scene("").parse();
@@ -97,7 +84,7 @@ TEST(HybridScene, RefusesWhatTheRegionsCannotCarry) {
 
 struct Outcome {
   RunResult result;
-  std::map<std::string, std::string> last;
+  std::map<std::string, double> last;
   std::vector<double> method;  // last frame
   Index particles = 0;
 };
@@ -113,7 +100,7 @@ Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
   o.result = run_scene(scene, opt);
   for (const char* f : {"fields.h5", "fields.xdmf", "history.csv", "summary.json"})
     EXPECT_TRUE(fs::exists(out / f)) << f;
-  o.last = last_history_row(out / "history.csv");
+  o.last = test::last_history_row(out / "history.csv");
   const test::FieldsReader fields((out / "fields.h5").string());
   EXPECT_EQ(fields.frames().size(), 3u);
   o.method = fields.read(fields.frames().back(), "method");
@@ -167,13 +154,13 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
                           "reaction_top_y",
                           "reaction_bottom_y"})
     EXPECT_TRUE(o.last.count(col)) << col;
-  EXPECT_TRUE(std::isfinite(std::stod(o.last.at("conversion_energy"))));
-  const double pd = std::stod(o.last.at("pd_particles")), tr = std::stod(o.last.at("transition_particles")),
-               mp = std::stod(o.last.at("mpm_particles")), rm = std::stod(o.last.at("removed_particles"));
+  EXPECT_TRUE(std::isfinite(o.last.at("conversion_energy")));
+  const double pd = o.last.at("pd_particles"), tr = o.last.at("transition_particles"), mp = o.last.at("mpm_particles"),
+               rm = o.last.at("removed_particles");
   EXPECT_EQ(pd + tr + mp + rm, static_cast<double>(o.particles));
   EXPECT_GT(pd, 0.0);
   EXPECT_GT(mp, 0.0);
-  EXPECT_GT(std::stod(o.last.at("kinetic_energy")), 0.0);
+  EXPECT_GT(o.last.at("kinetic_energy"), 0.0);
   // The field agrees with the counts.
   double pd_field = 0.0;
   for (double m : o.method) {
@@ -188,13 +175,13 @@ TEST(HybridRun, ModePdIsAllPeridynamics) {
   ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
   EXPECT_EQ(o.result.summary["mode"], "pd");
   EXPECT_EQ(o.result.summary["particle_steps"]["mpm"].get<double>(), 0.0);
-  EXPECT_EQ(std::stod(o.last.at("pd_particles")), static_cast<double>(o.particles));
-  EXPECT_EQ(std::stod(o.last.at("mpm_particles")), 0.0);
+  EXPECT_EQ(o.last.at("pd_particles"), static_cast<double>(o.particles));
+  EXPECT_EQ(o.last.at("mpm_particles"), 0.0);
   for (double m : o.method) EXPECT_EQ(m, 0.0);
   // All PD: the reactions come from the held PD particles alone (−Σ V (f + b)); the grips
   // pull the plate apart, so the top support pulls up and the bottom one down.
-  EXPECT_GT(std::stod(o.last.at("reaction_top_y")), 0.0);
-  EXPECT_LT(std::stod(o.last.at("reaction_bottom_y")), 0.0);
+  EXPECT_GT(o.last.at("reaction_top_y"), 0.0);
+  EXPECT_LT(o.last.at("reaction_bottom_y"), 0.0);
 }
 
 // The plate of test::hybrid_plate_scene() with no grips: PD around its pre-crack, the grid elsewhere

@@ -23,44 +23,12 @@
 #include "verification/support/fields_reader.hpp"
 #include "verification/support/scene_text.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/output_files.hpp"
 
 namespace pdmpm::sim {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The last row of history.csv, by column name.
-std::map<std::string, double> last_history_row(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::map<std::string, double> row;
-  std::stringstream h(header), v(last);
-  std::string name, value;
-  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
-  return row;
-}
-
-// Every row of history.csv, by column name.
-std::vector<std::map<std::string, double>> history_rows(const fs::path& csv) {
-  std::ifstream in(csv);
-  std::string header, line;
-  std::getline(in, header);
-  std::vector<std::string> names;
-  std::stringstream h(header);
-  for (std::string name; std::getline(h, name, ',');) names.push_back(name);
-  std::vector<std::map<std::string, double>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::stringstream v(line);
-    auto& row = rows.emplace_back();
-    std::string value;
-    for (std::size_t k = 0; k < names.size() && std::getline(v, value, ','); ++k) row[names[k]] = std::stod(value);
-  }
-  return rows;
-}
 
 RunResult run(const io::Scene& scene, const fs::path& out) {
   RunOptions opt;
@@ -83,7 +51,7 @@ TEST(MpmRun, PlateTensionSceneFollowsTheBilinearCurve) {
   EXPECT_EQ(r.summary["particles"], 800);
   EXPECT_EQ(r.summary["metrics"]["failed_particles"], 0);
 
-  const auto h = last_history_row(out / "history.csv");
+  const auto h = test::last_history_row(out / "history.csv");
   const double t = h.at("time"), ramp = 7.2e-5, speed = 0.52, L = 0.02, W = 0.01, thickness = 3e-3;
   const double stretch = 1.0 + speed * (t - 0.5 * ramp) / L;
   const double E = 215e9, nu = 0.33, sy = 340e6, Et = 1.45e9;
@@ -159,7 +127,7 @@ TEST(MpmRun, TractionLayerCarriesTheSameForce) {
     const auto out = scratch.fresh(name);
     const auto r = run(traction_plate(spec), out);
     ASSERT_EQ(r.exit_code, 0) << r.message;
-    const auto h = last_history_row(out / "history.csv");
+    const auto h = test::last_history_row(out / "history.csv");
     // 0.1 %: local damping leaves a kinetic energy of 1e-3 of the stored energy after 2000 steps.
     EXPECT_NEAR(h.at("reaction_left_x") / -300.0, 1.0, 1e-3) << name;
     // A load switched on at once and damped to rest stores half its work and the
@@ -255,7 +223,7 @@ TEST(MpmRun, GripsAtFullSpeedFromTheStartAreNotAnInstability) {
   EXPECT_EQ(r.summary["status"], "completed");
   // The balance's error is the explicit booking's half-step lag, ½ Δt R·V against
   // 40 steps of R·V Δt (1.25 % once R has settled); measured 0.99 %.
-  const auto row = last_history_row(out / "history.csv");
+  const auto row = test::last_history_row(out / "history.csv");
   EXPECT_LT(std::abs(row.at("energy_error")), 0.0125 * row.at("boundary_work"));
 }
 
@@ -278,7 +246,7 @@ TEST(MpmRun, UniformInitialVelocityMovesAFreeBodyRigidly) {
   ASSERT_EQ(r.exit_code, 0) << r.message;
   const double mass = 7850.0 * 0.02 * 0.01 * 1e-3, rho_c = std::sqrt(200e9 * 7850.0);
   const Vec<2> v0(3.0, -2.0), expected = mass * v0;
-  const auto rows = history_rows(out / "history.csv");
+  const auto rows = test::history_rows(out / "history.csv");
   ASSERT_EQ(rows.size(), 101u);
   double worst_momentum = 0.0, worst_stress = 0.0, worst_energy = 0.0;
   for (const auto& row : rows) {
@@ -339,7 +307,7 @@ TEST(MpmRun, AffineInitialDisplacementGivesHookesStressAtTimeZero) {
   // answer by O(|H|) = 1e-6 relative. A missing F (zero stress) or F from the wrong
   // component would be off by O(1).
   EXPECT_LT(worst, 1e-5);
-  const auto rows = history_rows(out / "history.csv");
+  const auto rows = test::history_rows(out / "history.csv");
   const double volume = 0.02 * 0.01 * 1e-3;
   const double W = 0.5 * (eps(0, 0) * hooke[0] + eps(1, 1) * hooke[1] + 2.0 * eps(0, 1) * hooke[3]) * volume;
   EXPECT_NEAR(rows.front().at("internal_energy") / W, 1.0, 1e-5);  // same O(|H|) terms

@@ -1,6 +1,7 @@
 // RunRecorder with a fake run: what every run writes is written once, here —
 // history on schedule, frames, the summary keys, all or nothing.
 #include "solver/sim/run_recorder.hpp"
+#include "verification/support/output_files.hpp"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -62,13 +63,6 @@ RunResult fake_run(Fixture& f, bool unstable_at_7) {
   return rec.finish(done, 0.1 * static_cast<double>(done), 0, 2, {{"solver", "fake"}, {"dimension", 2}});
 }
 
-std::string read(const fs::path& p) {
-  std::ifstream in(p);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
 TEST(RunRecorder, WritesHistoryFramesAndTheCommonSummary) {
   Fixture f;
   const auto r = fake_run(f, false);
@@ -77,7 +71,7 @@ TEST(RunRecorder, WritesHistoryFramesAndTheCommonSummary) {
   for (const char* name : {"history.csv", "fields.h5", "fields.xdmf", "summary.json"})
     EXPECT_TRUE(fs::exists(f.dir / name)) << name;
   // history every 2 steps and at the last: 0, 2, 4, 6, 8, 10 → header + 6 rows.
-  const std::string history = read(f.dir / "history.csv");
+  const std::string history = test::read_text(f.dir / "history.csv");
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), 7) << history;
   const auto& s = r.summary;
   for (const char* key : {"scene", "file", "description", "status", "message", "steps", "steps_requested", "threads",
@@ -87,7 +81,7 @@ TEST(RunRecorder, WritesHistoryFramesAndTheCommonSummary) {
   EXPECT_EQ(s["steps_requested"], 10);
   EXPECT_EQ(s["solver"], "fake");
   // frames every 5 steps: 0, 5, 10.
-  const std::string xdmf = read(f.dir / "fields.xdmf");
+  const std::string xdmf = test::read_text(f.dir / "fields.xdmf");
   std::size_t grids = 0;
   for (std::size_t at = xdmf.find("<Time "); at != std::string::npos; at = xdmf.find("<Time ", at + 1)) ++grids;
   EXPECT_EQ(grids, 3u) << xdmf;
@@ -111,8 +105,7 @@ TEST(RunRecorder, NothingIsLeftWhenTheRunThrows) {
     rec.start({"step"}, 2, 1.0);
     rec.write_history({0.0});
     throw std::runtime_error("the method failed");
-  } catch (const std::runtime_error&) {
-  }
+  } catch (const std::runtime_error&) {}
   ASSERT_TRUE(fs::exists(f.dir));  // created by the run, left empty
   EXPECT_TRUE(fs::is_empty(f.dir)) << "a staged file or directory was left behind";
 }
