@@ -27,6 +27,7 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   plastic_modulus_ = hardening_ ? hardening_->hardening_modulus(sys.material.E) : 0.0;
   const Index n = sys.particles.n_real;
   shell_ = isotropy_weights(sys);
+  shell_.resize(shell_.size() + kernels::lanes, 0.0);  // whole-block loads (kernels::per_offset)
   m_ = reference_weighted_volumes(sys);
   m_.resize(n);
   inv_m_.resize(n);
@@ -51,8 +52,10 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
       reverse_[b] = static_cast<BondIndex>(std::lower_bound(first, last, opposite[f.shape[b]]) - f.shape.begin());
     }
   plastic_ext_.assign(f.n_bonds(), 0.0);
-  trial_eps_.assign(f.n_bonds(), 0.0);
+  trial_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
+  reverse_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
   scale_.assign(n, 1.0);
+  mean_scale_.assign(2 * static_cast<std::size_t>(n), 0.0);
   mean_term_.assign(n, 0.0);
   volumetric_energy_.assign(n, 0.0);
   axial_plastic_.assign(D == 2 ? n : 0, 0.0);
@@ -110,25 +113,19 @@ std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
 }
 
 // Radial return of particle i's deviatoric force state (reads the committed
-// state, writes the trial one).
+// state, writes the trial one). The first pass left e in trial_eps_ and
+// θ_c = (d/m_d) Σ ωβcV|ξ|e: the dilatation measured with the deviatoric weights, so
+// that Σ ωβcV|ξ| ε = 0 and the force is the gradient of W (with c ≡ 1 it is LPS's θ).
 template <int D>
 void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   const auto& p = sys.particles;
   const auto& t = sys.table;
-  // θ_c = (d/m_d) Σ ωβcV|ξ|e: the dilatation measured with the deviatoric weights, so that
-  // Σ ωβcV|ξ| ε = 0 and the force is the gradient of W (with c ≡ 1 it is LPS's θ).
-  double moment = 0.0;
-  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
-    const double e = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e;
-    trial_eps_[b] = e;
-    moment += t.weight[k] * shell_[k] * p.volume[j] * t.length[k] * e;
-  });
-  theta_c_[i] = k_.d * moment * inv_md_[i];
   const double gamma_theta = k_.gamma * theta_c_[i];
   double norm2 = 0.0;  // Σ ω β c V ε²
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     const double eps = trial_eps_[b] - gamma_theta * t.length[k] - plastic_ext_.committed[b];
     trial_eps_[b] = eps;
+    reverse_eps_[reverse_[b]] = eps;  // the reverse bond's owner reads it in its force pass (only i writes there)
     norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
   });
   const double ep_n = eq_plastic_.committed[i];
@@ -151,6 +148,8 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     volumetric_energy_[i] = 0.5 * k_.kappa * theta_[i] * theta_[i];
   }
   scale_[i] = r;
+  mean_scale_[2 * i] = mean_term_[i] * inv_m_[i];
+  mean_scale_[2 * i + 1] = r * k_.B * inv_md_[i];
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
@@ -217,61 +216,39 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   const Index n = p.n_real;
   const auto& t = sys.table;
   if (req.energy) req.energy->resize(n);
-  // Pass 1: break bonds (before-force rule), dilatation over the intact ones — LPS's kernel.
-  std::vector<double> theta_all(p.size(), 0.0);
-  kernels::LpsArgs a;
-  a.fam = sys.family_view();
-  a.table = t.view();
-  a.u = p.u.data()->data();
-  a.volume = p.volume.data();
-  a.uniform_volume = sys.uniform_volume();
-  a.m = m_.data();
-  a.theta = theta_all.data();
-  a.d = k_.d;
-  a.breaking = req.break_bonds;
-  a.s0 = req.critical_stretch;
-  a.after_force = req.break_after_force;
-  std::int64_t newly = kernels::lps_dilatation<D>(a);
-  std::copy(theta_all.begin(), theta_all.begin() + n, theta_.begin());
+  // Pass 1: break bonds (before-force rule), θ and θ_c over the intact ones, e per bond.
+  kernels::LpsPlasticArgs a;  // (no ghosts: p.size() = n)
+  a.lps.fam = sys.family_view();
+  a.lps.table = t.view();
+  a.lps.u = p.u.data()->data();
+  a.lps.volume = p.volume.data();
+  a.lps.uniform_volume = sys.uniform_volume();
+  a.lps.m = m_.data();
+  a.lps.theta = theta_.data();
+  a.lps.d = k_.d;
+  a.lps.breaking = req.break_bonds;
+  a.lps.s0 = req.critical_stretch;
+  a.lps.after_force = req.break_after_force;
+  a.lps.f = p.f.data()->data();
+  a.lps.energy = req.energy ? req.energy->data() : nullptr;
+  a.shell = shell_.data();
+  a.inv_md = inv_md_.data();
+  a.theta_c = theta_c_.data();
+  a.bond_strain = trial_eps_.data();
+  a.reverse_strain = reverse_eps_.data();
+  a.mean_scale = mean_scale_.data();
+  a.volumetric_energy = volumetric_energy_.data();
+  a.scale = scale_.data();
+  a.B = k_.B;
+  std::int64_t newly = kernels::lps_plastic_extension<D>(a);
 
-  // Pass 2: the return mapping of every owner.
-  const Index n_owners = a.fam.n_owners;
+  // Pass 2: the return mapping of every owner (e → ε, r, μ and s).
+  const Index n_owners = a.lps.fam.n_owners;
 #pragma omp parallel for schedule(static)
-  for (Index k = 0; k < n_owners; ++k) return_map(sys, a.fam.particle(k));
+  for (Index k = 0; k < n_owners; ++k) return_map(sys, a.lps.fam.particle(k));
 
-  // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|.
-  const double B = k_.B;
-  std::int64_t broken_after = 0;
-#pragma omp parallel for schedule(static) reduction(+ : broken_after)
-  for (Index k = 0; k < n_owners; ++k) {
-    const Index i = a.fam.particle(k);
-    Vec<D> f = Vec<D>::Zero();
-    double dev = 0.0;
-    sys.for_each_live_bond(i, [&](BondIndex b, Index j, int s) {
-      const auto g = deform<D>(t.xi[s], t.length[s], p.u[j] - p.u[i]);
-      const double L = t.length[s];
-      // The elastic deviatoric part after the return is r ε_trial (both sides live together).
-      const double eps_i = scale_[i] * trial_eps_[b], eps_j = scale_[j] * trial_eps_[reverse_[b]];
-      const double tij = mean_term_[i] * L * inv_m_[i] + shell_[s] * B * eps_i * inv_md_[i];
-      const double tji = mean_term_[j] * L * inv_m_[j] + shell_[s] * B * eps_j * inv_md_[j];
-      f += t.weight[s] * p.volume[j] * (tij + tji) / g.l * g.y;
-      if (req.energy) dev += t.weight[s] * shell_[s] * p.volume[j] * eps_i * eps_i;
-    });
-    p.f[i] = f;
-    if (req.energy) (*req.energy)[i] = volumetric_energy_[i] + 0.5 * B * inv_md_[i] * dev;
-    // Break-after-force rule (LAMMPS): i's side only, whose flags nobody else reads in this pass.
-    if (req.break_bonds && req.break_after_force)
-      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
-        if (!sys.bonds.live(b)) continue;
-        const int s = sys.families.shape[b];
-        const auto g = deform<D>(t.xi[s], t.length[s], p.u[sys.families.neighbor[b]] - p.u[i]);
-        if (g.e > req.critical_stretch * t.length[s]) {
-          sys.bonds.flags.trial[b] |= kBondBroken;
-          ++broken_after;
-        }
-      }
-  }
-  newly += broken_after;
+  // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|; the break-after-force rule.
+  newly += kernels::lps_plastic_forces<D>(a);
   if (req.break_bonds && sys.ductile_failure.enabled) newly += fail_particles(sys);
   double work = 0.0;
   for (Index i = 0; i < n; ++i) work += dissipation_[i];

@@ -22,22 +22,22 @@ inline constexpr int lanes = 8;
 // so a block starting at any stencil row can be loaded whole; and the same as
 // rows, for blocks whose offsets are scattered.
 struct BondShapeTable {
-  const double* xi[3];       // reference bond vector components
-  const double* length;      // |ξ|
-  const double* weight;      // ω β
-  const double* rows;        // 4 per offset: ξ (D components), |ξ|, zeros; `lanes` zero rows of padding
+  const double* xi[3];   // reference bond vector components
+  const double* length;  // |ξ|
+  const double* weight;  // ω β
+  const double* rows;    // 4 per offset: ξ (D components), |ξ|, zeros; `lanes` zero rows of padding
 };
 
 // Bond arrays (neighbor, shape, broken) are padded with `lanes` entries past the
 // last bond (core::Families, pd::System), so a block may read 8 entries anywhere.
 struct FamilyView {
-  Index n_owners;           // particles visited
-  const Index* owner;       // their indices, increasing (nullptr: 0 … n_owners − 1)
-  Index n_sites;            // particles a neighbour index may name (real + ghosts): the extent of u
+  Index n_owners;      // particles visited
+  const Index* owner;  // their indices, increasing (nullptr: 0 … n_owners − 1)
+  Index n_sites;       // particles a neighbour index may name (real + ghosts): the extent of u
   const BondIndex* offsets;
   const Index* neighbor;
   const std::uint16_t* shape;
-  std::uint8_t* broken;      // per-bond flags (pd/bond_state.hpp): live when 0; a new break sets 1
+  std::uint8_t* broken;  // per-bond flags (pd/bond_state.hpp): live when 0; a new break sets 1
 
   Index particle(Index k) const { return owner ? owner[k] : k; }
 };
@@ -45,15 +45,15 @@ struct FamilyView {
 struct PmbArgs {
   FamilyView fam;
   BondShapeTable table;
-  const double* u;        // displacements, D per particle (real + ghosts)
-  const double* volume;   // per particle
-  bool uniform_volume;    // every volume equals volume[0] (lattice bodies): not gathered per bond
-  double* f;              // force density out, D per real particle
-  double* energy;         // W_i out (nullptr: not computed)
-  double c;               // micromodulus
+  const double* u;       // displacements, D per particle (real + ghosts)
+  const double* volume;  // per particle
+  bool uniform_volume;   // every volume equals volume[0] (lattice bodies): not gathered per bond
+  double* f;             // force density out, D per real particle
+  double* energy;        // W_i out (nullptr: not computed)
+  double c;              // micromodulus
   bool breaking;
   double s0;
-  bool after_force;       // break after acting, at s > s₀ (LAMMPS) instead of before, at s ≥ s₀
+  bool after_force;  // break after acting, at s > s₀ (LAMMPS) instead of before, at s ≥ s₀
 };
 
 struct LpsArgs {
@@ -61,17 +61,38 @@ struct LpsArgs {
   BondShapeTable table;
   const double* u;
   const double* volume;
-  bool uniform_volume;    // as in PmbArgs
-  const double* m;        // weighted volume, real + ghosts
-  double* theta;          // dilatation, real + ghosts (pass 1 writes real ones)
+  bool uniform_volume;       // as in PmbArgs
+  const double* m;           // weighted volume, real + ghosts
+  double* theta;             // dilatation, real + ghosts (pass 1 writes real ones)
   const double* alpha_beta;  // (A θ / m, B / m) per particle, interleaved (pass 2 reads, real + ghosts; 0 where m = 0)
   double* f;
   double* energy;
   double A, B, kappa, gamma;
-  int d;                  // dimension in θ = (d/m) Σ ω β |ξ| e V
+  int d;  // dimension in θ = (d/m) Σ ω β |ξ| e V
   bool breaking;
   double s0;
-  bool after_force;       // as in PmbArgs: pass 1 keeps such bonds, pass 2 breaks them
+  bool after_force;  // as in PmbArgs: pass 1 keeps such bonds, pass 2 breaks them
+};
+
+// lps_plastic's bond loops (solver/pd/lps_plastic.hpp). The first is LPS's
+// dilatation pass that also keeps each bond's extension e and measures θ_c with
+// the deviatoric weights c ωβ; between the two, the model's return mapping turns
+// e into ε = e^d − p_n per bond and writes each ε_ij also at the reverse bond's
+// place (stores, instead of loads from the neighbour's family in the force pass,
+// which wait on cache misses); the second sums the pair forces
+// (t_ij + t_ji) β V_j y/|y| with t_ij/ω = μ_i |ξ| + c s_i ε_ij, μ = (mean term)/m and
+// s = r B/m_d per particle (r: the return's scale of the elastic deviator).
+struct LpsPlasticArgs {
+  LpsArgs lps;           // LPS's fields: pass 1 writes lps.theta; the force pass writes lps.f and lps.energy
+  const double* shell;   // c per stencil offset, padded with `lanes` entries
+  const double* inv_md;  // 1/m_d per particle (0 where m_d = 0)
+  double* theta_c;       // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
+  double* bond_strain;   // e per bond side (pass 1 out), then ε_ij (force pass in); padded with `lanes` entries
+  const double* reverse_strain;     // ε_ji per bond side i→j, placed there by j's return mapping; padded
+  const double* mean_scale;         // (μ, s) per particle, interleaved (force pass)
+  const double* volumetric_energy;  // per particle: W_i's volumetric part (force pass, with energy)
+  const double* scale;              // r per particle (force pass, with energy)
+  double B;                         // deviatoric modulus of t (15G, 8G, E)
 };
 
 // Each returns the number of bond sides broken by the call.
@@ -81,6 +102,10 @@ template <int D>
 std::int64_t lps_dilatation(const LpsArgs& a);
 template <int D>
 std::int64_t lps_forces(const LpsArgs& a);
+template <int D>
+std::int64_t lps_plastic_extension(const LpsPlasticArgs& a);
+template <int D>
+std::int64_t lps_plastic_forces(const LpsPlasticArgs& a);
 
 // Which instruction set the dispatcher chose: "avx512", "avx2" or "sse2".
 // PDMPM_SIMD=sse2|avx2|avx512 in the environment forces a (supported) choice.

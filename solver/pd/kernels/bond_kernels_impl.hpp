@@ -228,8 +228,8 @@ std::int64_t lps_forces(const LpsArgs& a) {
       else
         gather_rows_narrow<2, 2>(a.alpha_beta, B.j, ab_j);
       const Deformed<D> g = deform<D>(B);
-      const d8 coef = B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) /
-                      ((g.len + B.L) * g.len);
+      const d8 coef =
+          B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) / ((g.len + B.L) * g.len);
       for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
       if constexpr (Energy) {
         const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
@@ -240,6 +240,84 @@ std::int64_t lps_forces(const LpsArgs& a) {
     });
     for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
     if constexpr (Energy) a.energy[i] = 0.5 * a.kappa * theta_i * theta_i + 0.5 * beta_i * lane_sum(dev);
+  }
+  return newly;
+}
+
+// A per-offset value of each lane's bond (lps_plastic's c): one load where the
+// block's offsets are consecutive (the array is padded), else one read per lane.
+inline d8 per_offset(const double* v, const std::uint16_t* k, int count) {
+  if (k[count - 1] - k[0] == count - 1) return load8(v + k[0]);
+  return d8{v[k[0]], v[k[1]], v[k[2]], v[k[3]], v[k[4]], v[k[5]], v[k[6]], v[k[7]]};
+}
+
+// lps_plastic's first pass: LPS's dilatation (same breaks, same θ), the deviatoric
+// dilatation θ_c = (d/m_d) Σ c ωβ|ξ| e V, and e of every bond of the family kept for
+// the return mapping (only this family's entries are written: no other thread's).
+template <int D>
+std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
+  const LpsArgs& a = p.lps;
+  const FamilyView& fam = a.fam;
+  const m8 breaking = a.breaking && !a.after_force ? m8{} - 1 : m8{};
+  const double s0 = a.s0;
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
+    d8 acc = splat(0.0), acc_c = splat(0.0);
+    Block<D> B;
+    for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+      const Deformed<D> g = deform<D>(B);
+      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+      const m8 acts = B.live & ~breaks;
+      const d8 e = g.num / (g.len + B.L);
+      const d8 moment = keep(acts, B.wv * B.L * e);  // ω β |ξ| e V_j
+      acc += moment;
+      acc_c += per_offset(p.shell, fam.shape + b0, count) * moment;
+      for (int l = 0; l < count; ++l) p.bond_strain[b0 + l] = e[l];
+      newly += mark_broken(fam, b0, count, breaks);
+    });
+    a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
+    p.theta_c[i] = a.d * lane_sum(acc_c) * p.inv_md[i];
+  }
+  return newly;
+}
+
+// lps_plastic's force pass: (t_ij + t_ji) β V_j y/|y| with
+// t_ij + t_ji = ω [ |ξ| (μ_i + μ_j) + c (s_i ε_ij + s_j ε_ji) ], every bond-side value
+// read in family order. W_i = volumetric part + ½ (B/m_d) Σ c ωβ V (r ε)².
+template <int D, bool Energy>
+std::int64_t lps_plastic_forces(const LpsPlasticArgs& p) {
+  const LpsArgs& a = p.lps;
+  const FamilyView& fam = a.fam;
+  const m8 breaking = a.breaking && a.after_force ? m8{} - 1 : m8{};
+  const double* eps = p.bond_strain;
+  std::int64_t newly = 0;
+#pragma omp parallel for schedule(static) reduction(+ : newly)
+  for (Index k = 0; k < fam.n_owners; ++k) {
+    const Index i = fam.particle(k);
+    d8 acc[D], dev = splat(0.0);
+    for (auto& x : acc) x = splat(0.0);
+    Block<D> B;
+    d8 ms_j[2];  // μ_j, s_j
+    const double mu_i = p.mean_scale[2 * i], s_i = p.mean_scale[2 * i + 1];
+    for_each_block<D>(a, i, B, [&](auto mode, BondIndex b0, int count) {
+      if constexpr (decltype(mode)::wide)  // rows of two doubles: readable wherever u_j is
+        gather_rows_wide<2, 2>(p.mean_scale, B.j, ms_j);
+      else
+        gather_rows_narrow<2, 2>(p.mean_scale, B.j, ms_j);
+      const Deformed<D> g = deform<D>(B);
+      const d8 c = per_offset(p.shell, fam.shape + b0, count);
+      const d8 eps_i = load8(eps + b0), eps_j = load8(p.reverse_strain + b0);
+      const d8 t = B.L * (mu_i + ms_j[0]) + c * (s_i * eps_i + ms_j[1] * eps_j);
+      const d8 coef = B.wv * t / g.len;
+      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
+      if constexpr (Energy) dev += keep(B.live, B.wv * c * eps_i * eps_i);
+      // Break-after-force rule: i's side only, which no other particle reads in this pass.
+      newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
+    });
+    for (int d = 0; d < D; ++d) a.f[D * i + d] = lane_sum(acc[d]);
+    if constexpr (Energy) a.energy[i] = p.volumetric_energy[i] + 0.5 * s_i * p.scale[i] * lane_sum(dev);
   }
   return newly;
 }
@@ -258,6 +336,11 @@ const KernelSet PDMPM_SIMD_SET = {
     {{PDMPM_SIMD_NS::lps_forces<1, false>, PDMPM_SIMD_NS::lps_forces<1, true>},
      {PDMPM_SIMD_NS::lps_forces<2, false>, PDMPM_SIMD_NS::lps_forces<2, true>},
      {PDMPM_SIMD_NS::lps_forces<3, false>, PDMPM_SIMD_NS::lps_forces<3, true>}},
+    {PDMPM_SIMD_NS::lps_plastic_extension<1>, PDMPM_SIMD_NS::lps_plastic_extension<2>,
+     PDMPM_SIMD_NS::lps_plastic_extension<3>},
+    {{PDMPM_SIMD_NS::lps_plastic_forces<1, false>, PDMPM_SIMD_NS::lps_plastic_forces<1, true>},
+     {PDMPM_SIMD_NS::lps_plastic_forces<2, false>, PDMPM_SIMD_NS::lps_plastic_forces<2, true>},
+     {PDMPM_SIMD_NS::lps_plastic_forces<3, false>, PDMPM_SIMD_NS::lps_plastic_forces<3, true>}},
 };
 
 }  // namespace pdmpm::pd::kernels

@@ -10,6 +10,8 @@ struct KernelSet {
   std::int64_t (*pmb[3][2])(const PmbArgs&);
   std::int64_t (*lps_dilatation[3])(const LpsArgs&);
   std::int64_t (*lps_forces[3][2])(const LpsArgs&);
+  std::int64_t (*lps_plastic_extension[3])(const LpsPlasticArgs&);
+  std::int64_t (*lps_plastic_forces[3][2])(const LpsPlasticArgs&);
 };
 
 extern const KernelSet kernels_sse2;
