@@ -136,7 +136,7 @@ Study study(const std::string& tier, const std::vector<int>& ns, const std::vect
   std::snprintf(adr_text, sizeof adr_text, "%.1e", adr_change);
   json rows = json::array();
   json series = json::array();
-  auto add = [&](const std::vector<Level>& set, const std::string& label) {
+  auto add = [&](const std::vector<Level>& set, const std::string& label, const std::string& style) {
     json xs = json::array(), ys = json::array();
     for (const auto& lv : set) {
       rows.push_back({label, lv.m, lv.n, 1e3 * lv.dx, lv.m / lv.n, 1e3 * lv.span, lv.particles, lv.iterations,
@@ -144,16 +144,16 @@ Study study(const std::string& tier, const std::vector<int>& ns, const std::vect
       xs.push_back(lv.m / lv.n);
       ys.push_back(std::abs(lv.error));
     }
-    series.push_back({{"label", label}, {"x", xs}, {"y", ys}, {"style", "line"}});
+    series.push_back({{"label", label}, {"x", xs}, {"y", ys}, {"style", style}});
   };
-  add(st.hpd, "hpd, δ = 2.015Δx");
+  add(st.hpd, "hpd, δ = 2.015Δx", "line");
   for (const std::string& label : {"hpd, δ = 3.015Δx", "lps, δ = 2.015Δx", "lps, δ = 3.015Δx"}) {
     std::vector<Level> set;
     for (const auto& lv : others)
       if (label.rfind(lv.model, 0) == 0 &&
           std::abs(lv.m - (label.find("2.015") != std::string::npos ? 2.015 : 3.015)) < 1e-9)
         set.push_back(lv);
-    if (!set.empty()) add(set, label);
+    if (!set.empty()) add(set, label, "points");
   }
   const std::string t = tier == "full" ? "Full tier" : "Fast tier";
   test::record_data(kProblem, tier + "_1_cantilever_levels",
