@@ -51,7 +51,9 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
       const auto first = f.shape.begin() + f.begin(j), last = f.shape.begin() + f.end(j);
       reverse_[b] = static_cast<BondIndex>(std::lower_bound(first, last, opposite[f.shape[b]]) - f.shape.begin());
     }
-  plastic_ext_.assign(f.n_bonds(), 0.0);
+  plastic_ext_.assign(f.n_bonds() + kernels::lanes, 0.0);  // padded: the first pass loads p_n by blocks
+  trial_flowed_.assign(n, 0);
+  norm2_.assign(n, 0.0);
   trial_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
   reverse_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
   scale_.assign(n, 1.0);
@@ -113,21 +115,14 @@ std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
 }
 
 // Radial return of particle i's deviatoric force state (reads the committed
-// state, writes the trial one). The first pass left e in trial_eps_ and
-// θ_c = (d/m_d) Σ ωβcV|ξ|e: the dilatation measured with the deviatoric weights, so
-// that Σ ωβcV|ξ| ε = 0 and the force is the gradient of W (with c ≡ 1 it is LPS's θ).
+// state, writes the trial one). The first pass left, per live bond, the trial
+// deviatoric extension ε = e − γθ_c|ξ| − p_n, with θ_c = (d/m_d) Σ ωβcV|ξ|e the
+// dilatation measured with the deviatoric weights (so that Σ ωβcV|ξ| ε = 0 and the
+// force is the gradient of W; with c ≡ 1 it is LPS's θ), and Σ ωβcV ε².
 template <int D>
 void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   const auto& p = sys.particles;
-  const auto& t = sys.table;
-  const double gamma_theta = k_.gamma * theta_c_[i];
-  double norm2 = 0.0;  // Σ ω β c V ε²
-  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
-    const double eps = trial_eps_[b] - gamma_theta * t.length[k] - plastic_ext_.committed[b];
-    trial_eps_[b] = eps;
-    reverse_eps_[reverse_[b]] = eps;  // the reverse bond's owner reads it in its force pass (only i writes there)
-    norm2 += t.weight[k] * shell_[k] * p.volume[j] * eps * eps;
-  });
+  const double norm2 = norm2_[i];
   const double ep_n = eq_plastic_.committed[i];
   const double radius =
       hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n : std::numeric_limits<double>::infinity();
@@ -153,9 +148,12 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
-  // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs.
+  // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs. A particle
+  // that does not flow keeps p_n, copied back only if an earlier trial changed it.
+  if (r == 1.0 && !trial_flowed_[i]) return;
   for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
     plastic_ext_.trial[b] = plastic_ext_.committed[b];
+  trial_flowed_[i] = r != 1.0;
   if (r == 1.0) return;
   sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
     plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
@@ -216,7 +214,8 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   const Index n = p.n_real;
   const auto& t = sys.table;
   if (req.energy) req.energy->resize(n);
-  // Pass 1: break bonds (before-force rule), θ and θ_c over the intact ones, e per bond.
+  // Pass 1: break bonds (before-force rule), θ and θ_c over the intact ones, then ε and
+  // Σ ωβcV ε² per particle, ε also at each reverse bond.
   kernels::LpsPlasticArgs a;  // (no ghosts: p.size() = n)
   a.lps.fam = sys.family_view();
   a.lps.table = t.view();
@@ -236,13 +235,17 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   a.theta_c = theta_c_.data();
   a.bond_strain = trial_eps_.data();
   a.reverse_strain = reverse_eps_.data();
+  a.reverse = reverse_.data();
+  a.plastic_extension = plastic_ext_.committed.data();
+  a.norm2 = norm2_.data();
+  a.lps.gamma = k_.gamma;
   a.mean_scale = mean_scale_.data();
   a.volumetric_energy = volumetric_energy_.data();
   a.scale = scale_.data();
   a.B = k_.B;
   std::int64_t newly = kernels::lps_plastic_extension<D>(a);
 
-  // Pass 2: the return mapping of every owner (e → ε, r, μ and s).
+  // Pass 2: the return mapping of every owner (r, μ, s and the trial plastic state).
   const Index n_owners = a.lps.fam.n_owners;
 #pragma omp parallel for schedule(static)
   for (Index k = 0; k < n_owners; ++k) return_map(sys, a.lps.fam.particle(k));
@@ -298,6 +301,7 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
 template <int D>
 void LpsPlastic<D>::accept() {
   plastic_ext_.accept();
+  std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
   eq_plastic_.accept();
   axial_plastic_.accept();
   ductile_damage_.accept();
@@ -307,6 +311,7 @@ void LpsPlastic<D>::accept() {
 template <int D>
 void LpsPlastic<D>::reject() {
   plastic_ext_.reject();
+  std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
   eq_plastic_.reject();
   axial_plastic_.reject();
   ductile_damage_.reject();
@@ -387,6 +392,7 @@ void LpsPlastic<D>::checkpoint(core::StateArchive& a) {
   a.sync("lps_plastic/plastic_work_trial", plastic_work_trial_);
   a.sync("lps_plastic/sigma_eq", sigma_eq_);
   a.sync("lps_plastic/trial_strain", trial_eps_);
+  a.sync("lps_plastic/trial_flowed", trial_flowed_);
   a.sync("lps_plastic/scale", scale_);
   a.sync("lps_plastic/mean_term", mean_term_);
   a.sync("lps_plastic/volumetric_energy", volumetric_energy_);

@@ -108,17 +108,19 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
   std::vector<double> shell_;        // c per stencil offset (1 without the isotropy correction), padded for the kernels
   std::vector<BondIndex> reverse_;   // bond j→i of each bond i→j
-  Committed<double> plastic_ext_;    // p per bond side
+  Committed<double> plastic_ext_;    // p per bond side (padded for the kernels)
   Committed<double> eq_plastic_;     // ε̄_p per particle
   std::vector<double> dissipation_;  // V_i σ̄ Δε̄_p of the last evaluation (J)
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
   std::vector<double> trial_eps_;                         // ε = e^d − p_n per bond side, last evaluation (padded)
-  std::vector<double> reverse_eps_;        // ε of each bond side's reverse, placed by its owner (padded)
-  std::vector<double> scale_;              // r per particle: the elastic part is r ε after the return
-  std::vector<double> mean_scale_;         // (mean term/m, r B/m_d) per particle, the force pass's gather
-  std::vector<double> mean_term_;          // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
-  std::vector<double> volumetric_energy_;  // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
+  std::vector<double> reverse_eps_;         // ε of each bond side's reverse, placed by its owner (padded)
+  std::vector<double> norm2_;               // Σ ωβcV ε² per particle, last evaluation
+  std::vector<std::uint8_t> trial_flowed_;  // 1 where the trial p differs from the committed one
+  std::vector<double> scale_;               // r per particle: the elastic part is r ε after the return
+  std::vector<double> mean_scale_;          // (mean term/m, r B/m_d) per particle, the force pass's gather
+  std::vector<double> mean_term_;           // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
+  std::vector<double> volumetric_energy_;   // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
   // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.
   Committed<double> axial_plastic_;
   // Ductile failure: ∫ dε̄_p/ε_f per particle (rule "accumulated"), and who failed in this evaluation.

@@ -75,20 +75,24 @@ struct LpsArgs {
 };
 
 // lps_plastic's bond loops (solver/pd/lps_plastic.hpp). The first is LPS's
-// dilatation pass that also keeps each bond's extension e and measures θ_c with
-// the deviatoric weights c ωβ; between the two, the model's return mapping turns
-// e into ε = e^d − p_n per bond and writes each ε_ij also at the reverse bond's
-// place (stores, instead of loads from the neighbour's family in the force pass,
-// which wait on cache misses); the second sums the pair forces
+// dilatation pass that also measures θ_c with the deviatoric weights c ωβ and, in a
+// second sweep over the same family (in cache), the trial deviatoric extension
+// ε = e − γθ_c|ξ| − p_n of every live bond, Σ c ωβ V ε², and ε written also at the
+// reverse bond's place (a store there instead of a load from the neighbour's family
+// in the force pass, which would wait on cache misses). Between the two the model's
+// return mapping scales the elastic deviator by r; the second sums the pair forces
 // (t_ij + t_ji) β V_j y/|y| with t_ij/ω = μ_i |ξ| + c s_i ε_ij, μ = (mean term)/m and
-// s = r B/m_d per particle (r: the return's scale of the elastic deviator).
+// s = r B/m_d per particle.
 struct LpsPlasticArgs {
-  LpsArgs lps;           // LPS's fields: pass 1 writes lps.theta; the force pass writes lps.f and lps.energy
-  const double* shell;   // c per stencil offset, padded with `lanes` entries
-  const double* inv_md;  // 1/m_d per particle (0 where m_d = 0)
-  double* theta_c;       // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
-  double* bond_strain;   // e per bond side (pass 1 out), then ε_ij (force pass in); padded with `lanes` entries
-  const double* reverse_strain;     // ε_ji per bond side i→j, placed there by j's return mapping; padded
+  LpsArgs lps;                      // LPS's fields (γ too): pass 1 writes lps.theta; the force pass lps.f, lps.energy
+  const double* shell;              // c per stencil offset, padded with `lanes` entries
+  const double* inv_md;             // 1/m_d per particle (0 where m_d = 0)
+  const double* plastic_extension;  // committed p per bond side, padded
+  const BondIndex* reverse;         // bond j→i of each bond i→j
+  double* theta_c;                  // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
+  double* norm2;                    // Σ c ωβ V ε² per real particle (pass 1 out)
+  double* bond_strain;              // ε_ij per live bond side (pass 1 out, force pass in); padded
+  double* reverse_strain;           // ε_ji per bond side i→j, placed there by j's first pass; padded
   const double* mean_scale;         // (μ, s) per particle, interleaved (force pass)
   const double* volumetric_energy;  // per particle: W_i's volumetric part (force pass, with energy)
   const double* scale;              // r per particle (force pass, with energy)

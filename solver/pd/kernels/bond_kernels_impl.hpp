@@ -251,9 +251,10 @@ inline d8 per_offset(const double* v, const std::uint16_t* k, int count) {
   return d8{v[k[0]], v[k[1]], v[k[2]], v[k[3]], v[k[4]], v[k[5]], v[k[6]], v[k[7]]};
 }
 
-// lps_plastic's first pass: LPS's dilatation (same breaks, same θ), the deviatoric
-// dilatation θ_c = (d/m_d) Σ c ωβ|ξ| e V, and e of every bond of the family kept for
-// the return mapping (only this family's entries are written: no other thread's).
+// lps_plastic's first pass: LPS's dilatation (same breaks, same θ) and the
+// deviatoric dilatation θ_c = (d/m_d) Σ c ωβ|ξ| e V, keeping e per bond; then a second
+// sweep over the family: ε = e − γθ_c|ξ| − p_n and Σ c ωβ V ε² over the live bonds,
+// ε stored in place and at the reverse bond (a slot only this particle writes).
 template <int D>
 std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
   const LpsArgs& a = p.lps;
@@ -278,7 +279,28 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       newly += mark_broken(fam, b0, count, breaks);
     });
     a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
-    p.theta_c[i] = a.d * lane_sum(acc_c) * p.inv_md[i];
+    const double theta_c = a.d * lane_sum(acc_c) * p.inv_md[i];
+    p.theta_c[i] = theta_c;
+    const double gt = a.gamma * theta_c;
+    d8 n2 = splat(0.0);
+    for (BondIndex b0 = fam.offsets[i]; b0 < fam.offsets[i + 1]; b0 += lanes) {
+      const int count = static_cast<int>(std::min<BondIndex>(lanes, fam.offsets[i + 1] - b0));
+      const std::uint16_t* shape = fam.shape + b0;
+      const Index* j = fam.neighbor + b0;
+      const d8 L = per_offset(a.table.length, shape, count);
+      d8 wvc = per_offset(a.table.weight, shape, count) * per_offset(p.shell, shape, count);
+      if (a.uniform_volume)
+        wvc *= a.volume[0];
+      else
+        wvc *= d8{a.volume[j[0]], a.volume[j[1]], a.volume[j[2]], a.volume[j[3]],
+                  a.volume[j[4]], a.volume[j[5]], a.volume[j[6]], a.volume[j[7]]};
+      const m8 live = lanes_zero(fam.broken + b0) & (lane_ids < count);
+      const d8 eps = load8(p.bond_strain + b0) - gt * L - load8(p.plastic_extension + b0);
+      n2 += keep(live, wvc * eps * eps);
+      for (int l = 0; l < count; ++l)
+        if (live[l]) p.bond_strain[b0 + l] = p.reverse_strain[p.reverse[b0 + l]] = eps[l];
+    }
+    p.norm2[i] = lane_sum(n2);
   }
   return newly;
 }

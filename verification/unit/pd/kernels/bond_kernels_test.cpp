@@ -5,7 +5,7 @@
 // last particle of u as a neighbour (narrow gather), uniform and per-particle
 // volumes, pre-broken bonds and bonds breaking during the call. lps_plastic's two
 // kernels are run back to back on the same bodies (the return mapping between them
-// is the model's, not the kernels': here the kept extensions are shifted instead).
+// is the model's, not the kernels').
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,7 +29,7 @@ std::vector<const KernelSet*> runnable_sets() {
 
 // Everything a kernel call writes, compared byte by byte.
 struct Outputs {
-  std::vector<double> f, energy, theta, theta_c, strain;
+  std::vector<double> f, energy, theta, theta_c, norm2, strain, reverse_strain;
   std::vector<std::uint8_t> broken;
   std::int64_t newly = 0;
   bool operator==(const Outputs& o) const {
@@ -37,7 +37,8 @@ struct Outputs {
       return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
     };
     return newly == o.newly && same(f, o.f) && same(energy, o.energy) && same(theta, o.theta) &&
-        same(theta_c, o.theta_c) && same(strain, o.strain) && same(broken, o.broken);
+        same(theta_c, o.theta_c) && same(norm2, o.norm2) && same(strain, o.strain) &&
+        same(reverse_strain, o.reverse_strain) && same(broken, o.broken);
   }
 };
 
@@ -45,8 +46,10 @@ template <int D>
 struct Body {
   System<D> sys;
   std::vector<double> m, alpha_beta;
-  // lps_plastic's inputs: c per offset, 1/m_d, (μ, s), volumetric energy, r per particle; ε_ji per bond side.
-  std::vector<double> shell, inv_md, mean_scale, volumetric, scale, reverse_strain;
+  // lps_plastic's inputs: c per offset, 1/m_d, (μ, s), volumetric energy, r per particle; p_n per bond side
+  // and a reverse-bond map (a one-to-one map, as the real one: each slot has one writer).
+  std::vector<double> shell, inv_md, mean_scale, volumetric, scale, plastic;
+  std::vector<BondIndex> reverse;
 
   explicit Body(bool uniform_volume) {
     test::BlockSpec spec;
@@ -85,9 +88,13 @@ struct Body {
       volumetric[i] = 1e3 * static_cast<double>(i % 7);
       scale[i] = 1.0 - 0.02 * static_cast<double>(i % 3);
     }
-    reverse_strain.assign(sys.families.n_bonds() + lanes, 0.0);
-    for (BondIndex b = 0; b < sys.families.n_bonds(); ++b)
-      reverse_strain[static_cast<std::size_t>(b)] = 1e-3 * std::sin(0.37 * static_cast<double>(b));
+    const BondIndex n_bonds = sys.families.n_bonds();
+    plastic.assign(static_cast<std::size_t>(n_bonds) + lanes, 0.0);
+    reverse.resize(static_cast<std::size_t>(n_bonds));
+    for (BondIndex b = 0; b < n_bonds; ++b) {
+      plastic[static_cast<std::size_t>(b)] = 1e-4 * std::sin(0.37 * static_cast<double>(b));
+      reverse[static_cast<std::size_t>(b)] = n_bonds - 1 - b;
+    }
   }
 
   // The fields PmbArgs and LpsArgs share, pointed at this body and at `out`.
@@ -135,7 +142,9 @@ struct Body {
     o.energy.assign(sys.particles.size(), 0.0);
     o.theta.assign(sys.particles.size(), 0.0);
     o.theta_c.assign(sys.particles.size(), 0.0);
+    o.norm2.assign(sys.particles.size(), 0.0);
     o.strain.assign(sys.families.n_bonds() + lanes, 0.0);
+    o.reverse_strain.assign(sys.families.n_bonds() + lanes, 0.0);
     o.broken = sys.bonds.flags.trial;
     return o;
   }
@@ -164,13 +173,15 @@ struct Body {
     a.inv_md = inv_md.data();
     a.theta_c = out.theta_c.data();
     a.bond_strain = out.strain.data();
-    a.reverse_strain = reverse_strain.data();
+    a.plastic_extension = plastic.data();
+    a.reverse = reverse.data();
+    a.norm2 = out.norm2.data();
+    a.reverse_strain = out.reverse_strain.data();
     a.mean_scale = mean_scale.data();
     a.volumetric_energy = volumetric.data();
     a.scale = scale.data();
     a.B = 5.0;
     out.newly = set.lps_plastic_extension[D - 1](a);
-    for (BondIndex b = 0; b < sys.families.n_bonds(); ++b) out.strain[b] -= 1e-3;  // stands in for e → ε
     out.newly += set.lps_plastic_forces[D - 1][1](a);
     return out;
   }
