@@ -55,9 +55,10 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   trial_flowed_.assign(n, 0);
   norm2_.assign(n, 0.0);
   trial_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
-  reverse_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
+  reverse_plastic_.assign(f.n_bonds() + kernels::lanes, 0.0);
+  offsets_.assign(f.offsets.begin(), f.offsets.begin() + n + 1);
   scale_.assign(n, 1.0);
-  mean_scale_.assign(2 * static_cast<std::size_t>(n), 0.0);
+  particle_rows_.assign(4 * static_cast<std::size_t>(n), 0.0);
   mean_term_.assign(n, 0.0);
   volumetric_energy_.assign(n, 0.0);
   axial_plastic_.assign(D == 2 ? n : 0, 0.0);
@@ -143,8 +144,9 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
     volumetric_energy_[i] = 0.5 * k_.kappa * theta_[i] * theta_[i];
   }
   scale_[i] = r;
-  mean_scale_[2 * i] = mean_term_[i] * inv_m_[i];
-  mean_scale_[2 * i + 1] = r * k_.B * inv_md_[i];
+  particle_rows_[4 * i] = mean_term_[i] * inv_m_[i];
+  particle_rows_[4 * i + 1] = r * k_.B * inv_md_[i];
+  particle_rows_[4 * i + 2] = k_.gamma * theta_c_[i];
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
@@ -234,12 +236,11 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   a.inv_md = inv_md_.data();
   a.theta_c = theta_c_.data();
   a.bond_strain = trial_eps_.data();
-  a.reverse_strain = reverse_eps_.data();
-  a.reverse = reverse_.data();
+  a.reverse_plastic = reverse_plastic_.data();
   a.plastic_extension = plastic_ext_.committed.data();
   a.norm2 = norm2_.data();
   a.lps.gamma = k_.gamma;
-  a.mean_scale = mean_scale_.data();
+  a.particle_rows = particle_rows_.data();
   a.volumetric_energy = volumetric_energy_.data();
   a.scale = scale_.data();
   a.B = k_.B;
@@ -301,6 +302,13 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
 template <int D>
 void LpsPlastic<D>::accept() {
   plastic_ext_.accept();
+  // The force pass's copy of each reverse bond's p follows the particles that flowed.
+  const auto n = static_cast<Index>(trial_flowed_.size());
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i)
+    if (trial_flowed_[i])
+      for (BondIndex b = offsets_[i]; b < offsets_[i + 1]; ++b)
+        reverse_plastic_[reverse_[b]] = plastic_ext_.committed[b];
   std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
   eq_plastic_.accept();
   axial_plastic_.accept();
@@ -393,6 +401,7 @@ void LpsPlastic<D>::checkpoint(core::StateArchive& a) {
   a.sync("lps_plastic/sigma_eq", sigma_eq_);
   a.sync("lps_plastic/trial_strain", trial_eps_);
   a.sync("lps_plastic/trial_flowed", trial_flowed_);
+  a.sync("lps_plastic/reverse_plastic_extension", reverse_plastic_);
   a.sync("lps_plastic/scale", scale_);
   a.sync("lps_plastic/mean_term", mean_term_);
   a.sync("lps_plastic/volumetric_energy", volumetric_energy_);

@@ -91,7 +91,9 @@ class LpsPlastic final : public Model<D> {
   double plastic_extension(BondIndex b) const { return plastic_ext_.committed[b]; }
   double axial_plastic_strain(Index i) const { return D == 2 ? axial_plastic_.committed[i] : 0.0; }
   double committed_eq_plastic_strain(Index i) const { return eq_plastic_.committed[i]; }
-  void set_plastic_extension(BondIndex b, double p) { plastic_ext_.trial[b] = plastic_ext_.committed[b] = p; }
+  void set_plastic_extension(BondIndex b, double p) {
+    plastic_ext_.trial[b] = plastic_ext_.committed[b] = reverse_plastic_[reverse_[b]] = p;
+  }
   void set_particle_plastic_state(Index i, double q_p, double eq_plastic) {
     if constexpr (D == 2) axial_plastic_.trial[i] = axial_plastic_.committed[i] = q_p;
     eq_plastic_.trial[i] = eq_plastic_.committed[i] = eq_plastic;
@@ -114,11 +116,12 @@ class LpsPlastic final : public Model<D> {
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
   std::vector<double> trial_eps_;                         // ε = e^d − p_n per bond side, last evaluation (padded)
-  std::vector<double> reverse_eps_;         // ε of each bond side's reverse, placed by its owner (padded)
-  std::vector<double> norm2_;               // Σ ωβcV ε² per particle, last evaluation
+  std::vector<double> reverse_plastic_;  // committed p of each bond side's reverse bond (padded): the force pass's copy
+  std::vector<BondIndex> offsets_;       // the families' offsets (accept() updates reverse_plastic_ by particle)
+  std::vector<double> norm2_;            // Σ ωβcV ε² per particle, last evaluation
   std::vector<std::uint8_t> trial_flowed_;  // 1 where the trial p differs from the committed one
   std::vector<double> scale_;               // r per particle: the elastic part is r ε after the return
-  std::vector<double> mean_scale_;          // (mean term/m, r B/m_d) per particle, the force pass's gather
+  std::vector<double> particle_rows_;       // (mean term/m, r B/m_d, γθ_c, 0) per particle, the force pass's gather
   std::vector<double> mean_term_;           // 3Kθ (3D), 2P (2D), 0 (bar): t_ij's volumetric term is this ω|ξ|/m
   std::vector<double> volumetric_energy_;   // ½Kθ² (3D), ½K(θ + ε_zz)² + 6G q_e² (2D)
   // 2D only: q_p per particle (committed/trial), q_e and ε_zz of the last evaluation.

@@ -254,7 +254,7 @@ inline d8 per_offset(const double* v, const std::uint16_t* k, int count) {
 // lps_plastic's first pass: LPS's dilatation (same breaks, same θ) and the
 // deviatoric dilatation θ_c = (d/m_d) Σ c ωβ|ξ| e V, keeping e per bond; then a second
 // sweep over the family: ε = e − γθ_c|ξ| − p_n and Σ c ωβ V ε² over the live bonds,
-// ε stored in place and at the reverse bond (a slot only this particle writes).
+// ε stored in place.
 template <int D>
 std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
   const LpsArgs& a = p.lps;
@@ -298,7 +298,7 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       const d8 eps = load8(p.bond_strain + b0) - gt * L - load8(p.plastic_extension + b0);
       n2 += keep(live, wvc * eps * eps);
       for (int l = 0; l < count; ++l)
-        if (live[l]) p.bond_strain[b0 + l] = p.reverse_strain[p.reverse[b0 + l]] = eps[l];
+        if (live[l]) p.bond_strain[b0 + l] = eps[l];
     }
     p.norm2[i] = lane_sum(n2);
   }
@@ -306,8 +306,9 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
 }
 
 // lps_plastic's force pass: (t_ij + t_ji) β V_j y/|y| with
-// t_ij + t_ji = ω [ |ξ| (μ_i + μ_j) + c (s_i ε_ij + s_j ε_ji) ], every bond-side value
-// read in family order. W_i = volumetric part + ½ (B/m_d) Σ c ωβ V (r ε)².
+// t_ij + t_ji = ω [ |ξ| (μ_i + μ_j) + c (s_i ε_ij + s_j ε_ji) ], ε_ji = e − γθ_c,j|ξ| − p_ji
+// (the same expression, on the same bits, as j's own first pass: e is symmetric).
+// W_i = volumetric part + ½ (B/m_d) Σ c ωβ V (r ε)².
 template <int D, bool Energy>
 std::int64_t lps_plastic_forces(const LpsPlasticArgs& p) {
   const LpsArgs& a = p.lps;
@@ -321,17 +322,15 @@ std::int64_t lps_plastic_forces(const LpsPlasticArgs& p) {
     d8 acc[D], dev = splat(0.0);
     for (auto& x : acc) x = splat(0.0);
     Block<D> B;
-    d8 ms_j[2];  // μ_j, s_j
-    const double mu_i = p.mean_scale[2 * i], s_i = p.mean_scale[2 * i + 1];
-    for_each_block<D>(a, i, B, [&](auto mode, BondIndex b0, int count) {
-      if constexpr (decltype(mode)::wide)  // rows of two doubles: readable wherever u_j is
-        gather_rows_wide<2, 2>(p.mean_scale, B.j, ms_j);
-      else
-        gather_rows_narrow<2, 2>(p.mean_scale, B.j, ms_j);
+    d8 row_j[3];  // μ_j, s_j, γθ_c,j
+    const double mu_i = p.particle_rows[4 * i], s_i = p.particle_rows[4 * i + 1];
+    for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+      gather_rows_wide<3, 4>(p.particle_rows, B.j, row_j);  // rows of four: always readable
       const Deformed<D> g = deform<D>(B);
       const d8 c = per_offset(p.shell, fam.shape + b0, count);
-      const d8 eps_i = load8(eps + b0), eps_j = load8(p.reverse_strain + b0);
-      const d8 t = B.L * (mu_i + ms_j[0]) + c * (s_i * eps_i + ms_j[1] * eps_j);
+      const d8 eps_i = load8(eps + b0);
+      const d8 eps_j = g.num / (g.len + B.L) - row_j[2] * B.L - load8(p.reverse_plastic + b0);
+      const d8 t = B.L * (mu_i + row_j[0]) + c * (s_i * eps_i + row_j[1] * eps_j);
       const d8 coef = B.wv * t / g.len;
       for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
       if constexpr (Energy) dev += keep(B.live, B.wv * c * eps_i * eps_i);

@@ -29,7 +29,7 @@ std::vector<const KernelSet*> runnable_sets() {
 
 // Everything a kernel call writes, compared byte by byte.
 struct Outputs {
-  std::vector<double> f, energy, theta, theta_c, norm2, strain, reverse_strain;
+  std::vector<double> f, energy, theta, theta_c, norm2, strain;
   std::vector<std::uint8_t> broken;
   std::int64_t newly = 0;
   bool operator==(const Outputs& o) const {
@@ -37,8 +37,7 @@ struct Outputs {
       return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
     };
     return newly == o.newly && same(f, o.f) && same(energy, o.energy) && same(theta, o.theta) &&
-        same(theta_c, o.theta_c) && same(norm2, o.norm2) && same(strain, o.strain) &&
-        same(reverse_strain, o.reverse_strain) && same(broken, o.broken);
+        same(theta_c, o.theta_c) && same(norm2, o.norm2) && same(strain, o.strain) && same(broken, o.broken);
   }
 };
 
@@ -46,10 +45,9 @@ template <int D>
 struct Body {
   System<D> sys;
   std::vector<double> m, alpha_beta;
-  // lps_plastic's inputs: c per offset, 1/m_d, (μ, s), volumetric energy, r per particle; p_n per bond side
-  // and a reverse-bond map (a one-to-one map, as the real one: each slot has one writer).
-  std::vector<double> shell, inv_md, mean_scale, volumetric, scale, plastic;
-  std::vector<BondIndex> reverse;
+  // lps_plastic's inputs: c per offset, 1/m_d, (μ, s, γθ_c, 0), the volumetric energy and r per
+  // particle; p_n and the reverse bond's p per bond side.
+  std::vector<double> shell, inv_md, rows, volumetric, scale, plastic, reverse_plastic;
 
   explicit Body(bool uniform_volume) {
     test::BlockSpec spec;
@@ -78,22 +76,23 @@ struct Body {
     shell.assign(sys.families.stencil.size() + lanes, 0.0);
     for (int k = 0; k < sys.families.stencil.size(); ++k) shell[k] = 1.0 + 0.1 * std::sin(1.3 * k);
     inv_md.resize(n);
-    mean_scale.resize(2 * n);
+    rows.assign(4 * n, 0.0);
     volumetric.resize(n);
     scale.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       inv_md[i] = 1e9 / (1.0 + 0.2 * static_cast<double>(i % 4));
-      mean_scale[2 * i] = 1e12 * std::cos(0.7 * static_cast<double>(i));
-      mean_scale[2 * i + 1] = 3e12 * (1.0 + 0.03 * static_cast<double>(i % 5));
+      rows[4 * i] = 1e12 * std::cos(0.7 * static_cast<double>(i));
+      rows[4 * i + 1] = 3e12 * (1.0 + 0.03 * static_cast<double>(i % 5));
+      rows[4 * i + 2] = 1e-3 * std::sin(1.1 * static_cast<double>(i));
       volumetric[i] = 1e3 * static_cast<double>(i % 7);
       scale[i] = 1.0 - 0.02 * static_cast<double>(i % 3);
     }
     const BondIndex n_bonds = sys.families.n_bonds();
     plastic.assign(static_cast<std::size_t>(n_bonds) + lanes, 0.0);
-    reverse.resize(static_cast<std::size_t>(n_bonds));
+    reverse_plastic.assign(static_cast<std::size_t>(n_bonds) + lanes, 0.0);
     for (BondIndex b = 0; b < n_bonds; ++b) {
       plastic[static_cast<std::size_t>(b)] = 1e-4 * std::sin(0.37 * static_cast<double>(b));
-      reverse[static_cast<std::size_t>(b)] = n_bonds - 1 - b;
+      reverse_plastic[static_cast<std::size_t>(b)] = 1e-4 * std::cos(0.23 * static_cast<double>(b));
     }
   }
 
@@ -144,7 +143,6 @@ struct Body {
     o.theta_c.assign(sys.particles.size(), 0.0);
     o.norm2.assign(sys.particles.size(), 0.0);
     o.strain.assign(sys.families.n_bonds() + lanes, 0.0);
-    o.reverse_strain.assign(sys.families.n_bonds() + lanes, 0.0);
     o.broken = sys.bonds.flags.trial;
     return o;
   }
@@ -174,10 +172,9 @@ struct Body {
     a.theta_c = out.theta_c.data();
     a.bond_strain = out.strain.data();
     a.plastic_extension = plastic.data();
-    a.reverse = reverse.data();
+    a.reverse_plastic = reverse_plastic.data();
     a.norm2 = out.norm2.data();
-    a.reverse_strain = out.reverse_strain.data();
-    a.mean_scale = mean_scale.data();
+    a.particle_rows = rows.data();
     a.volumetric_energy = volumetric.data();
     a.scale = scale.data();
     a.B = 5.0;
