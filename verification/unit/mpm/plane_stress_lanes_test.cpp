@@ -141,7 +141,8 @@ TEST(PlaneStressLanes, FlagANonFiniteStrainForTheLaw) {
 TEST(PlaneStressLanes, OnlyPlaneStressJ2AndLinearElasticityHaveThem) {
   EXPECT_TRUE(Constitutive<2>(plate_steel(MaterialModel::j2), core::Setting::plane_stress).plane_stress_law());
   EXPECT_FALSE(Constitutive<2>(plate_steel(MaterialModel::j2), core::Setting::plane_strain).plane_stress_law());
-  EXPECT_FALSE(Constitutive<2>(plate_steel(MaterialModel::neo_hookean), core::Setting::plane_stress).plane_stress_law());
+  EXPECT_FALSE(
+      Constitutive<2>(plate_steel(MaterialModel::neo_hookean), core::Setting::plane_stress).plane_stress_law());
   EXPECT_FALSE(Constitutive<3>(plate_steel(MaterialModel::j2), core::Setting::solid3d).plane_stress_law());
 }
 
