@@ -54,7 +54,6 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   plastic_ext_.assign(f.n_bonds() + kernels::lanes, 0.0);  // padded: the first pass loads p_n by blocks
   trial_flowed_.assign(n, 0);
   norm2_.assign(n, 0.0);
-  trial_eps_.assign(f.n_bonds() + kernels::lanes, 0.0);
   reverse_plastic_.assign(f.n_bonds() + kernels::lanes, 0.0);
   offsets_.assign(f.offsets.begin(), f.offsets.begin() + n + 1);
   scale_.assign(n, 1.0);
@@ -116,12 +115,13 @@ std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
 }
 
 // Radial return of particle i's deviatoric force state (reads the committed
-// state, writes the trial one). The first pass left, per live bond, the trial
-// deviatoric extension ε = e − γθ_c|ξ| − p_n, with θ_c = (d/m_d) Σ ωβcV|ξ|e the
-// dilatation measured with the deviatoric weights (so that Σ ωβcV|ξ| ε = 0 and the
-// force is the gradient of W; with c ≡ 1 it is LPS's θ), and Σ ωβcV ε².
+// state, writes the trial one), called by the first pass with eps[b], the trial
+// deviatoric extension ε = e − γθ_c|ξ| − p_n of each live bond b of i, with
+// θ_c = (d/m_d) Σ ωβcV|ξ|e the dilatation measured with the deviatoric weights (so
+// that Σ ωβcV|ξ| ε = 0 and the force is the gradient of W; with c ≡ 1 it is LPS's θ),
+// and norm2_[i] = Σ ωβcV ε².
 template <int D>
-void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
+void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps) {
   const auto& p = sys.particles;
   const double norm2 = norm2_[i];
   const double ep_n = eq_plastic_.committed[i];
@@ -153,13 +153,11 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i) {
   // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs. A particle
   // that does not flow keeps p_n, copied back only if an earlier trial changed it.
   if (r == 1.0 && !trial_flowed_[i]) return;
-  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
-    plastic_ext_.trial[b] = plastic_ext_.committed[b];
   trial_flowed_[i] = r != 1.0;
-  if (r == 1.0) return;
-  sys.for_each_live_bond(i, [&](BondIndex b, Index, int) {
-    plastic_ext_.trial[b] = plastic_ext_.committed[b] + (1.0 - r) * trial_eps_[b];
-  });
+  const double flow = 1.0 - r;
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    plastic_ext_.trial[b] =
+        flow != 0.0 && sys.bonds.live(b) ? plastic_ext_.committed[b] + flow * eps[b] : plastic_ext_.committed[b];
 }
 
 // The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,
@@ -217,7 +215,8 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   const auto& t = sys.table;
   if (req.energy) req.energy->resize(n);
   // Pass 1: break bonds (before-force rule), θ and θ_c over the intact ones, then ε and
-  // Σ ωβcV ε² per particle, ε also at each reverse bond.
+  // Σ ωβcV ε² per particle, and the particle's return mapping (r, μ, s and the trial
+  // plastic state).
   kernels::LpsPlasticArgs a;  // (no ghosts: p.size() = n)
   a.lps.fam = sys.family_view();
   a.lps.table = t.view();
@@ -235,7 +234,15 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   a.shell = shell_.data();
   a.inv_md = inv_md_.data();
   a.theta_c = theta_c_.data();
-  a.bond_strain = trial_eps_.data();
+  struct Context {
+    LpsPlastic* model;
+    const System<D>* sys;
+  } context{this, &sys};
+  a.model = &context;
+  a.return_map = [](void* c, Index i, const double* eps) {
+    const auto* ctx = static_cast<const Context*>(c);
+    ctx->model->return_map(*ctx->sys, i, eps);
+  };
   a.reverse_plastic = reverse_plastic_.data();
   a.plastic_extension = plastic_ext_.committed.data();
   a.norm2 = norm2_.data();
@@ -246,12 +253,7 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   a.B = k_.B;
   std::int64_t newly = kernels::lps_plastic_extension<D>(a);
 
-  // Pass 2: the return mapping of every owner (r, μ, s and the trial plastic state).
-  const Index n_owners = a.lps.fam.n_owners;
-#pragma omp parallel for schedule(static)
-  for (Index k = 0; k < n_owners; ++k) return_map(sys, a.lps.fam.particle(k));
-
-  // Pass 3: pair forces (t_ij + t_ji) β V_j y/|y|; the break-after-force rule.
+  // Pass 2: pair forces (t_ij + t_ji) β V_j y/|y|; the break-after-force rule.
   newly += kernels::lps_plastic_forces<D>(a);
   if (req.break_bonds && sys.ductile_failure.enabled) newly += fail_particles(sys);
   double work = 0.0;
@@ -299,16 +301,17 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
   return broken;
 }
 
+// The trial p differs from the committed one only on the bonds of the particles whose
+// trial flowed (return_map restores the others), so accept and reject copy those alone.
 template <int D>
 void LpsPlastic<D>::accept() {
-  plastic_ext_.accept();
   // The force pass's copy of each reverse bond's p follows the particles that flowed.
   const auto n = static_cast<Index>(trial_flowed_.size());
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i)
     if (trial_flowed_[i])
       for (BondIndex b = offsets_[i]; b < offsets_[i + 1]; ++b)
-        reverse_plastic_[reverse_[b]] = plastic_ext_.committed[b];
+        reverse_plastic_[reverse_[b]] = plastic_ext_.committed[b] = plastic_ext_.trial[b];
   std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
   eq_plastic_.accept();
   axial_plastic_.accept();
@@ -318,7 +321,12 @@ void LpsPlastic<D>::accept() {
 
 template <int D>
 void LpsPlastic<D>::reject() {
-  plastic_ext_.reject();
+  const auto n = static_cast<Index>(trial_flowed_.size());
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i)
+    if (trial_flowed_[i])
+      std::copy(plastic_ext_.committed.begin() + offsets_[i], plastic_ext_.committed.begin() + offsets_[i + 1],
+                plastic_ext_.trial.begin() + offsets_[i]);
   std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
   eq_plastic_.reject();
   axial_plastic_.reject();
@@ -399,7 +407,6 @@ void LpsPlastic<D>::checkpoint(core::StateArchive& a) {
   a.sync("lps_plastic/plastic_work", plastic_work_);
   a.sync("lps_plastic/plastic_work_trial", plastic_work_trial_);
   a.sync("lps_plastic/sigma_eq", sigma_eq_);
-  a.sync("lps_plastic/trial_strain", trial_eps_);
   a.sync("lps_plastic/trial_flowed", trial_flowed_);
   a.sync("lps_plastic/reverse_plastic_extension", reverse_plastic_);
   a.sync("lps_plastic/scale", scale_);

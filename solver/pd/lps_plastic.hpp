@@ -115,7 +115,6 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> dissipation_;  // V_i σ̄ Δε̄_p of the last evaluation (J)
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
-  std::vector<double> trial_eps_;                         // ε = e^d − p_n per bond side, last evaluation (padded)
   std::vector<double> reverse_plastic_;  // committed p of each bond side's reverse bond (padded): the force pass's copy
   std::vector<BondIndex> offsets_;       // the families' offsets (accept() updates reverse_plastic_ by particle)
   std::vector<double> norm2_;            // Σ ωβcV ε² per particle, last evaluation
@@ -131,7 +130,7 @@ class LpsPlastic final : public Model<D> {
   std::vector<std::uint8_t> failing_;
   std::vector<double> axial_elastic_, out_of_plane_;
 
-  void return_map(const System<D>& sys, Index i);
+  void return_map(const System<D>& sys, Index i, const double* eps);
   std::int64_t fail_particles(System<D>& sys);
   double planar_return(Index i, double norm2, double radius, double& x);
   void set_weighted_volumes(const System<D>& sys, Index i);

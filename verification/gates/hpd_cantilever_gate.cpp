@@ -148,7 +148,7 @@ Study study(const std::string& tier, const std::vector<int>& ns, const std::vect
     series.push_back({{"label", label}, {"x", xs}, {"y", ys}, {"style", style}});
   };
   add(st.hpd, "hpd, δ = 2.015Δx", "line");
-  for (const std::string& label : {"hpd, δ = 3.015Δx", "lps, δ = 2.015Δx", "lps, δ = 3.015Δx"}) {
+  for (const std::string label : {"hpd, δ = 3.015Δx", "lps, δ = 2.015Δx", "lps, δ = 3.015Δx"}) {
     std::vector<Level> set;
     for (const auto& lv : others)
       if (label.rfind(lv.model, 0) == 0 &&
@@ -183,8 +183,8 @@ Study study(const std::string& tier, const std::vector<int>& ns, const std::vect
                           std::string(order_text) + " in Δx."}});
   // The convergence series against Δx with the least-squares power law it gives.
   double mean_lh = 0.0, mean_le = 0.0;
-  for (std::size_t k = 0; k < h.size(); ++k)
-    mean_lh += std::log(h[k]) / h.size(), mean_le += std::log(err[k]) / h.size();
+  const auto levels = static_cast<double>(h.size());
+  for (std::size_t k = 0; k < h.size(); ++k) mean_lh += std::log(h[k]) / levels, mean_le += std::log(err[k]) / levels;
   json xs = json::array(), ys = json::array(), fit = json::array();
   for (std::size_t k = 0; k < h.size(); ++k) {
     xs.push_back(1e3 * h[k]);

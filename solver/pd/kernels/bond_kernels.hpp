@@ -77,13 +77,14 @@ struct LpsArgs {
 // lps_plastic's bond loops (solver/pd/lps_plastic.hpp). The first is LPS's
 // dilatation pass that also measures θ_c with the deviatoric weights c ωβ and, in a
 // second sweep over the same family (in cache), the trial deviatoric extension
-// ε = e − γθ_c|ξ| − p_n of every live bond and Σ c ωβ V ε². Between the two the
-// model's return mapping scales the elastic deviator by r; the second sums the pair
-// forces (t_ij + t_ji) β V_j y/|y| with t_ij/ω = μ_i |ξ| + c s_i ε_ij, μ = (mean term)/m
-// and s = r B/m_d per particle. It forms the other side's ε_ji = e − γθ_c,j|ξ| − p_ji
-// itself, from a copy of p_ji kept at the bond (the model updates it where particles
-// flowed), so no pass reads or writes another particle's bonds: every bond value is
-// read in family order.
+// ε = e − γθ_c|ξ| − p_n of every live bond and Σ c ωβ V ε²; it then hands the
+// particle, with its family's ε, to the model's return mapping, which scales the
+// elastic deviator by r. The second sums the pair forces (t_ij + t_ji) β V_j y/|y| with
+// t_ij/ω = μ_i |ξ| + c s_i ε_ij, μ = (mean term)/m and s = r B/m_d per particle. It forms
+// both sides' ε itself, ε_ij from p_ij and ε_ji = e − γθ_c,j|ξ| − p_ji from a copy of p_ji
+// kept at the bond (the model updates it where particles flowed), so no pass reads or
+// writes another particle's bonds and no ε is stored: every bond value is read in
+// family order.
 struct LpsPlasticArgs {
   LpsArgs lps;                      // LPS's fields (γ too): pass 1 writes lps.theta; the force pass lps.f, lps.energy
   const double* shell;              // c per stencil offset, padded with `lanes` entries
@@ -92,7 +93,10 @@ struct LpsPlasticArgs {
   const double* reverse_plastic;    // committed p_ji of each bond side i→j (a copy at the bond), padded
   double* theta_c;                  // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
   double* norm2;                    // Σ c ωβ V ε² per real particle (pass 1 out)
-  double* bond_strain;              // ε_ij per live bond side (pass 1 out, force pass in); padded
+  // The model's return mapping of particle i, called by pass 1 when θ, θ_c and the norm are
+  // known, with eps[b] = ε of each live bond side b of i's family (valid for b in i's range).
+  void (*return_map)(void* model, Index i, const double* eps);
+  void* model;
   const double* particle_rows;      // (μ, s, γθ_c, 0) per particle (force pass)
   const double* volumetric_energy;  // per particle: W_i's volumetric part (force pass, with energy)
   const double* scale;              // r per particle (force pass, with energy)

@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <cmath>
 
 #include "verification/support/pd_fixtures.hpp"
@@ -205,6 +207,26 @@ TEST(LpsPlastic, RejectRestoresThePlasticState) {
   const double ep = (*model.eq_plastic_strain())[c];
   model.compute_forces(sys, {});  // the same state again: already on the yield surface
   EXPECT_NEAR((*model.eq_plastic_strain())[c], ep, 1e-12 * ep);
+
+  // p per bond side (accept and reject copy it only for the particles whose trial flowed):
+  // a rejected trial leaves the committed p, and evaluating again gives the same bits.
+  std::vector<double> p_committed;
+  for (BondIndex q = sys.families.begin(c); q < sys.families.end(c); ++q)
+    p_committed.push_back(model.plastic_extension(q));
+  EXPECT_GT(*std::max_element(p_committed.begin(), p_committed.end()), 0.0) << "the accepted step flowed";
+  b.apply_affine(Vec<3>(30e-5, -15e-5, -15e-5).asDiagonal());  // further: flows again
+  model.compute_forces(sys, {});
+  const auto forces = sys.particles.f;
+  model.reject();
+  for (BondIndex q = sys.families.begin(c); q < sys.families.end(c); ++q)
+    EXPECT_EQ(model.plastic_extension(q), p_committed[q - sys.families.begin(c)]);
+  model.compute_forces(sys, {});
+  EXPECT_TRUE(sys.particles.f == forces) << "the evaluation after a reject repeats the rejected one bitwise";
+  model.accept();
+  bool changed = false;
+  for (BondIndex q = sys.families.begin(c); q < sys.families.end(c); ++q)
+    changed = changed || model.plastic_extension(q) != p_committed[q - sys.families.begin(c)];
+  EXPECT_TRUE(changed) << "accept commits the trial p of a particle that flowed";
 }
 
 }  // namespace

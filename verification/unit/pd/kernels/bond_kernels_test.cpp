@@ -170,7 +170,16 @@ struct Body {
     a.shell = shell.data();
     a.inv_md = inv_md.data();
     a.theta_c = out.theta_c.data();
-    a.bond_strain = out.strain.data();
+    // The return mapping's stand-in records ε of every bond side handed to it.
+    struct Recorder {
+      double* strain;
+      const FamilyView* fam;
+    } recorder{out.strain.data(), &a.lps.fam};
+    a.model = &recorder;
+    a.return_map = [](void* r, Index i, const double* eps) {
+      const auto* rec = static_cast<const Recorder*>(r);
+      for (BondIndex b = rec->fam->offsets[i]; b < rec->fam->offsets[i + 1]; ++b) rec->strain[b] = eps[b];
+    };
     a.plastic_extension = plastic.data();
     a.reverse_plastic = reverse_plastic.data();
     a.norm2 = out.norm2.data();
