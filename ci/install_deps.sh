@@ -21,7 +21,7 @@ packages=(
 # Opt-in: ParaView (pvpython) and a virtual X server for the test that opens the
 # fields in ParaView (verification/unit/io/fields_writer_paraview_test.cpp, skipped without them).
 if [ "${PDMPM_WITH_PARAVIEW:-0}" = "1" ]; then
-  packages+=(paraview python3-paraview xvfb)
+  packages+=(paraview python3-paraview xvfb x11-utils)  # x11-utils: xdpyinfo, the X server readiness check
 fi
 
 missing=()

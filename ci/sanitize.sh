@@ -14,4 +14,7 @@ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FL
 cmake --build "$build" -j "$(nproc)" --target pdmpm unit_tests
 cd "$build"
 # The instrumented pdmpm runs ~12× slower: the tests' hang limits scale with it.
-PDMPM_TEST_TIME_SCALE=10 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 ctest -L unit -j "$(nproc)" --timeout 900 --output-on-failure
+# The ParaView check (a third-party reader opening our files) runs in the release tier;
+# here it would only add an X server started under the sanitized tests' load.
+PDMPM_TEST_TIME_SCALE=10 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest -L unit -E '^ParaView\.' -j "$(nproc)" --timeout 900 --output-on-failure

@@ -115,7 +115,7 @@ std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
 }
 
 // Radial return of particle i's deviatoric force state (reads the committed
-// state, writes the trial one), called by the first pass with eps[b], the trial
+// state, writes the trial one), called by the first pass with eps[b − begin], the trial
 // deviatoric extension ε = e − γθ_c|ξ| − p_n of each live bond b of i, with
 // θ_c = (d/m_d) Σ ωβcV|ξ|e the dilatation measured with the deviatoric weights (so
 // that Σ ωβcV|ξ| ε = 0 and the force is the gradient of W; with c ≡ 1 it is LPS's θ),
@@ -155,9 +155,10 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
   if (r == 1.0 && !trial_flowed_[i]) return;
   trial_flowed_[i] = r != 1.0;
   const double flow = 1.0 - r;
-  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
-    plastic_ext_.trial[b] =
-        flow != 0.0 && sys.bonds.live(b) ? plastic_ext_.committed[b] + flow * eps[b] : plastic_ext_.committed[b];
+  const BondIndex begin = sys.families.begin(i);
+  for (BondIndex b = begin; b < sys.families.end(i); ++b)
+    plastic_ext_.trial[b] = flow != 0.0 && sys.bonds.live(b) ? plastic_ext_.committed[b] + flow * eps[b - begin]
+                                                             : plastic_ext_.committed[b];
 }
 
 // The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,

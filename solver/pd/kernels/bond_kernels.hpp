@@ -94,7 +94,7 @@ struct LpsPlasticArgs {
   double* theta_c;                  // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
   double* norm2;                    // Σ c ωβ V ε² per real particle (pass 1 out)
   // The model's return mapping of particle i, called by pass 1 when θ, θ_c and the norm are
-  // known, with eps[b] = ε of each live bond side b of i's family (valid for b in i's range).
+  // known, with eps[b − begin] = ε of each live bond side b of i's family [begin, end).
   void (*return_map)(void* model, Index i, const double* eps);
   void* model;
   const double* particle_rows;      // (μ, s, γθ_c, 0) per particle (force pass)

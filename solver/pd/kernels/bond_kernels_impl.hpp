@@ -272,7 +272,7 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       const Index i = fam.particle(k);
       const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
       if (strain.size() < static_cast<std::size_t>(end - begin) + lanes) strain.resize(end - begin + lanes);
-      double* row = strain.data() - begin;  // row[b] for b in [begin, end + lanes)
+      double* row = strain.data();  // row[b − begin] for b in [begin, end + lanes)
       d8 acc = splat(0.0), acc_c = splat(0.0);
       Block<D> B;
       for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
@@ -283,7 +283,7 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
         const d8 moment = keep(acts, B.wv * B.L * e);  // ω β |ξ| e V_j
         acc += moment;
         acc_c += per_offset(p.shell, fam.shape + b0, count) * moment;
-        __builtin_memcpy(row + b0, &e, sizeof e);
+        __builtin_memcpy(row + (b0 - begin), &e, sizeof e);
         // p_n of the block, read by the second sweep: the load missed the cache there (a
         // stream the hardware prefetcher does not follow among the gathers).
         __builtin_prefetch(p.plastic_extension + b0);
@@ -307,9 +307,9 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
           wvc *= d8{a.volume[j[0]], a.volume[j[1]], a.volume[j[2]], a.volume[j[3]],
                     a.volume[j[4]], a.volume[j[5]], a.volume[j[6]], a.volume[j[7]]};
         const m8 live = lanes_zero(fam.broken + b0) & (lane_ids < count);
-        const d8 eps = load8(row + b0) - gt * L - load8(p.plastic_extension + b0);
+        const d8 eps = load8(row + (b0 - begin)) - gt * L - load8(p.plastic_extension + b0);
         n2 += keep(live, wvc * eps * eps);
-        __builtin_memcpy(row + b0, &eps, sizeof eps);
+        __builtin_memcpy(row + (b0 - begin), &eps, sizeof eps);
       }
       p.norm2[i] = lane_sum(n2);
       p.return_map(p.model, i, row);

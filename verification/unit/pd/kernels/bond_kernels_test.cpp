@@ -178,7 +178,8 @@ struct Body {
     a.model = &recorder;
     a.return_map = [](void* r, Index i, const double* eps) {
       const auto* rec = static_cast<const Recorder*>(r);
-      for (BondIndex b = rec->fam->offsets[i]; b < rec->fam->offsets[i + 1]; ++b) rec->strain[b] = eps[b];
+      const BondIndex begin = rec->fam->offsets[i];
+      for (BondIndex b = begin; b < rec->fam->offsets[i + 1]; ++b) rec->strain[b] = eps[b - begin];
     };
     a.plastic_extension = plastic.data();
     a.reverse_plastic = reverse_plastic.data();
