@@ -391,8 +391,9 @@ TEST(FullCentralCrack, TimingTableOfTheThreeModes) {
 // t = kTimingEnd (the crack starts near 0.11 ms and runs through the plate by 0.25 ms).
 // Time: the stepping loop, median of kStudyReps interleaved repetitions, against pure SBPD
 // run interleaved with them. Accuracy: the largest front deviation from pure SBPD over the
-// samples (the J-integral the issue also names is not computed yet). Data, not a gate: the
-// report shows the points and their Pareto front, docs/verification/central_crack.md the advice.
+// samples (the J-integral the issue also names is not computed yet). Data, not a gate (a run
+// that blows up fails in run_central_crack): the report shows the points and their Pareto
+// front, docs/verification/central_crack.md what they say.
 constexpr int kStudyReps = 2;
 
 TEST(FullCentralCrack, RegionKnobStudy) {
@@ -494,8 +495,6 @@ TEST(FullCentralCrack, RegionKnobStudy) {
          "expansions", "conversions to PD", "conversions to MPM", "Pareto front"}},
        {"rows", rows},
        {"caption", setup + " The J-integral, the issue's other accuracy measure, is not computed yet."}});
-  for (const auto& r : last)
-    for (std::size_t k = 0; k < r.t.size(); ++k) ASSERT_TRUE(std::isfinite(r.left[k]) && std::isfinite(r.right[k]));
 }
 
 }  // namespace

@@ -3,9 +3,9 @@
 # xvfb-run -a races for one display number when called concurrently, and under load a
 # fresh Xvfb can be slow to accept clients, or lose its display to another server started
 # at the same moment. So each attempt (at most three) starts its own Xvfb on a free
-# display, waits until that server answers a client (xdpyinfo from x11-utils, up to 30 s), and runs
-# pvpython only then; a refused connection is retried with a new server — that failure
-# is the X server's start, not the fields'.
+# display, waits until that server answers a client (xdpyinfo from x11-utils, up to
+# 30 s), and runs pvpython only then; a refused connection is retried with a new
+# server — that failure is the X server's start, not the fields'.
 set -u
 # Whether the server on display $1 accepts a client (without xdpyinfo: its socket exists).
 answers() {
