@@ -1,6 +1,7 @@
 #include "solver/mpm/plane_stress_lanes.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "solver/mpm/lanes.hpp"
 
@@ -8,41 +9,129 @@ namespace pdmpm::mpm {
 
 namespace {
 
+const double kSqrt2over3 = std::sqrt(2.0 / 3.0);  // as j2_plasticity.cpp has it
+
+// The plane-stress return map of j2_return_plane_stress for the lanes in `run`, each
+// lane on its own iterates: f and f′ at Δγ, Newton steps safeguarded by the bracket
+// [lo, hi] that every iterate's sign tightens, bisection when a step leaves it. A lane
+// whose step leaves the bracket while hi is still unknown joins `scalar` (the scalar
+// code would now search for hi). Returns Δγ per lane.
+template <int W>
+__attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter(const PlaneStressLaw& law,
+                                                                               typename Lanes<W>::m run,
+                                                                               typename Lanes<W>::d s1,
+                                                                               typename Lanes<W>::d s2,
+                                                                               typename Lanes<W>::d alpha0,
+                                                                               typename Lanes<W>::m& scalar) {
+  using V = Lanes<W>;
+  using d = typename V::d;
+  using m = typename V::m;
+  const double c1 = law.c1, c2 = 2.0 * law.shear, H = law.hardening, dk = H * kSqrt2over3;
+  const double inf = std::numeric_limits<double>::infinity(), tol = 1e-15 * (law.yield_stress * law.yield_stress);
+  auto f = [&](d dg, d& df) {
+    const d d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
+    const d p2 = s1 * d1 * d1 + s2 * d2 * d2, p = V::sqrt(p2);
+    const d dp2 = -2.0 * (c1 * s1 * d1 * d1 * d1 + c2 * s2 * d2 * d2 * d2);
+    const d kappa = law.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
+    const d dp = V::select(p > 0.0, 0.5 * dp2 / p, d{} + 0.0);
+    const d dkappa = dk * (p + dg * dp);
+    df = 0.5 * dp2 - (2.0 / 3.0) * kappa * dkappa;
+    return 0.5 * p2 - kappa * kappa / 3.0;
+  };
+  d dg = d{} + 0.0, df, lo = d{} + 0.0, hi = d{} + inf;
+  d fv = f(dg, df);
+  m active = run;
+  for (int it = 0; it < 200; ++it) {
+    const d abs_f = V::select(fv < 0.0, -fv, fv);
+    const m hi_finite = (hi - hi) == 0.0;
+    active &= ~((abs_f <= tol) | (hi_finite & (hi - lo <= 1e-16 * hi)));
+    d next = dg - fv / df;
+    const m outside = ~((next > lo) & (next < hi));
+    const m unbracketed = active & outside & (hi == inf);
+    scalar |= unbracketed;
+    active &= ~unbracketed;
+    bool any = false;
+    for (int i = 0; i < W; ++i) any = any || active[i] != 0;
+    if (!any) break;
+    next = V::select(outside, 0.5 * (lo + hi), next);
+    dg = V::select(active, next, dg);
+    d df_new;
+    const d f_new = f(dg, df_new);
+    fv = V::select(active, f_new, fv), df = V::select(active, df_new, df);
+    const m up = fv > 0.0;
+    lo = V::select(active & up, dg, lo), hi = V::select(active & ~up, dg, hi);
+  }
+  return dg;
+}
+
 template <int W>
 __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const PlaneStressLaw& law, PlaneStressLanes& in) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
   const double C = law.modulus, nu = law.nu, k = law.thickness_strain;
-  const double sqrt2 = std::sqrt(2.0);
-  unsigned plastic = 0;
+  const double sqrt2 = std::sqrt(2.0), c1 = law.c1, c2 = 2.0 * law.shear, oop_per_trace = -nu / law.youngs;
+  unsigned by_law = 0;
+  in.yielded = 0;
   for (int c0 = 0; c0 < kLawLanes; c0 += W) {
     // The elastic trial (hooke_plane_stress on ε − ε_p).
-    const d e00 = V::load(in.l00 + c0) - V::load(in.p00 + c0), e11 = V::load(in.l11 + c0) - V::load(in.p11 + c0);
-    const d e01 = V::load(in.l01 + c0) - V::load(in.p01 + c0);
+    const d l00 = V::load(in.l00 + c0), l11 = V::load(in.l11 + c0), l01 = V::load(in.l01 + c0);
+    const d p00 = V::load(in.p00 + c0), p11 = V::load(in.p11 + c0), p01 = V::load(in.p01 + c0);
+    const d p22 = V::load(in.p22 + c0), alpha = V::load(in.alpha + c0);
+    const d e00 = l00 - p00, e11 = l11 - p11, e01 = l01 - p01;
     const d tr = e00 + e11;
     const d t00 = C * ((1.0 - nu) * e00 + nu * tr), t11 = C * ((1.0 - nu) * e11 + nu * tr);
     const d t01 = C * (1.0 - nu) * e01;
     // The yield check of j2_return_plane_stress in its spectral coordinates.
     const d a1 = (t00 + t11) / sqrt2, a2 = (t11 - t00) / sqrt2;
     const d s1 = a1 * a1 / 3.0, s2 = a2 * a2 + 2.0 * t01 * t01;
-    const d kappa = law.yield_stress + law.hardening * V::load(in.alpha + c0);
-    const m elastic = 0.5 * (s1 + s2) - kappa * kappa / 3.0 <= 0.0;
-    const d out_of_plane = k * tr + V::load(in.p22 + c0);
-    const d p00 = t00 * e00, p11 = t11 * e11, p01 = t01 * e01;
+    const d kappa = law.yield_stress + law.hardening * alpha;
+    const d f0 = 0.5 * (s1 + s2) - kappa * kappa / 3.0;
+    const m elastic = f0 <= 0.0, yielding = (f0 > 0.0) & ((f0 - f0) == 0.0);
+    m scalar = ~(elastic | yielding);  // not finite
+    d T00 = t00, T11 = t11, T01 = t01, out_of_plane = k * tr + p22;
+    d energy;
+    {
+      const d q00 = t00 * e00, q11 = t11 * e11, q01 = t01 * e01;
+      energy = 0.5 * ((q00 + q11) + (q01 + q01));
+    }
+    bool any_yielding = false;
+    for (int i = 0; i < W; ++i) any_yielding = any_yielding || yielding[i] != 0;
+    if (any_yielding) {
+      const d dg = consistency_parameter<W>(law, yielding, s1, s2, alpha, scalar);
+      const m ret = yielding & ~scalar;
+      // The returned stress and the plastic flow Δε_p = Δγ P σ.
+      const d b1 = a1 / (1.0 + c1 * dg), b2 = a2 / (1.0 + c2 * dg), b3 = t01 / (1.0 + c2 * dg);
+      const d r00 = (b1 - b2) / sqrt2, r11 = (b1 + b2) / sqrt2, r01 = b3;
+      const d d00 = dg * (2.0 * r00 - r11) / 3.0, d11 = dg * (2.0 * r11 - r00) / 3.0, d01 = dg * r01;
+      const d d22 = -(d00 + d11);
+      const d i1 = 1.0 / (1.0 + c1 * dg), i2 = 1.0 / (1.0 + c2 * dg);
+      const d d_alpha = kSqrt2over3 * dg * V::sqrt(s1 * i1 * i1 + s2 * i2 * i2);
+      const d n00 = p00 + d00, n11 = p11 + d11, n01 = p01 + d01, n22 = p22 + d22;
+      // T : Δε_p summed as Eigen sums the 3×3 product (T₃₃ = 0 times Δε_p,33 last).
+      const d dissipation = ((r00 * d00 + r11 * d11) + (r01 * d01 + r01 * d01)) + 0.0 * d22;
+      const d ee00 = l00 - n00, ee11 = l11 - n11, ee01 = l01 - n01;
+      T00 = V::select(ret, r00, T00), T11 = V::select(ret, r11, T11), T01 = V::select(ret, r01, T01);
+      energy = V::select(ret, 0.5 * (r00 * ee00 + r11 * ee11 + 2.0 * r01 * ee01), energy);
+      out_of_plane = V::select(ret, oop_per_trace * (r00 + r11) + n22, out_of_plane);
+      V::store(in.d00 + c0, d00), V::store(in.d11 + c0, d11), V::store(in.d01 + c0, d01);
+      V::store(in.d22 + c0, d22), V::store(in.d_alpha + c0, d_alpha), V::store(in.dissipation + c0, dissipation);
+      for (int i = 0; i < W; ++i)
+        if (ret[i]) in.yielded |= 1u << (c0 + i);
+    }
     // τ = R T Rᵀ on the in-plane block.
     const d c = V::load(in.c + c0), s = V::load(in.s + c0), ms = -s;
-    const d rt00 = c * t00 + ms * t01, rt01 = c * t01 + ms * t11;
-    const d rt10 = s * t00 + c * t01, rt11 = s * t01 + c * t11;
-    // J = exp(tr ε + ε₃₃), one library call per elastic lane (as the law makes it).
-    const d trace = (V::load(in.l00 + c0) + V::load(in.l11 + c0)) + out_of_plane;
+    const d rt00 = c * T00 + ms * T01, rt01 = c * T01 + ms * T11;
+    const d rt10 = s * T00 + c * T01, rt11 = s * T01 + c * T11;
+    // J = exp(tr ε + ε₃₃), one library call per lane the law leaves here (as the law makes it).
+    const d trace = (l00 + l11) + out_of_plane;
     double J[W];
     for (int i = 0; i < W; ++i) {
-      if (elastic[i]) {
+      if (!scalar[i]) {
         J[i] = std::exp(trace[i]);
       } else {
         J[i] = 1.0;
-        plastic |= 1u << (c0 + i);
+        by_law |= 1u << (c0 + i);
       }
     }
     V::store(in.k00 + c0, rt00 * c + rt01 * ms);
@@ -51,9 +140,9 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
     V::store(in.k11 + c0, rt10 * s + rt11 * c);
     V::store(in.J + c0, V::load(J));
     V::store(in.out_of_plane + c0, out_of_plane);
-    V::store(in.energy + c0, 0.5 * ((p00 + p11) + (p01 + p01)));
+    V::store(in.energy + c0, energy);
   }
-  return plastic;
+  return by_law;
 }
 
 unsigned plane_stress_lanes_sse2(const PlaneStressLaw& law, PlaneStressLanes& in) {

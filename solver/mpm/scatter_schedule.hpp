@@ -78,6 +78,14 @@ class ScatterSchedule {
   // fn(position in order(), particle index) for every particle, scheduled as described above.
   template <class Fn>
   void for_each(Fn&& fn) const {
+    for_each_block([&](Index k_begin, Index k_end) {
+      for (Index k = k_begin; k < k_end; ++k) fn(k, order_[k]);
+    });
+  }
+
+  // fn(k_begin, k_end) for every block's run of positions in order(), scheduled so.
+  template <class Fn>
+  void for_each_block(Fn&& fn) const {
     const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin;
     for (int c = 0; c < kColours; ++c) {
       const std::vector<Index>& blocks = colour_blocks_[c];
@@ -89,7 +97,7 @@ class ScatterSchedule {
 #pragma omp parallel for schedule(static) if (parallel)
       for (Index bi = 0; bi < nblk; ++bi) {
         const Index b = blocks[bi];
-        for (Index k = start_[b]; k < start_[b + 1]; ++k) fn(k, order_[k]);
+        fn(start_[b], start_[b + 1]);
       }
     }
   }

@@ -17,6 +17,7 @@
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/plane_stress_lanes.hpp"
 #include "solver/mpm/polar_lanes.hpp"
+#include "solver/mpm/scatter_rows.hpp"
 #include "solver/mpm/stress_measures.hpp"
 
 namespace pdmpm::mpm {
@@ -24,6 +25,16 @@ namespace pdmpm::mpm {
 namespace {
 
 bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == core::ParticleKind::transition; }
+
+// A plastic flow the lanes returned into the point's history, as the scalar law adds
+// it (Δε_p is 3×3: its zero entries add +0 too).
+void add_plastic_increment(PointHistory& h, const PlaneStressLanes& lanes, int l) {
+  Mat<3> d = Mat<3>::Zero();
+  d(0, 0) = lanes.d00[l], d(1, 1) = lanes.d11[l], d(2, 2) = lanes.d22[l];
+  d(0, 1) = d(1, 0) = lanes.d01[l];
+  h.plastic_strain += d;
+  h.eq_plastic_strain += lanes.d_alpha[l];
+}
 
 // Wall time between successive calls of lap().
 class PhaseClock {
@@ -304,6 +315,19 @@ void Simulation<D>::scatter(Scatter what) {
   const IVec<D> stride = grid_.stride;
   const bool external = any_external_force_;
   const std::vector<Index>& order = schedule_.order();
+  if constexpr (D == 2) {
+    if (K_ == 3) {  // a stencil row per instruction (scatter_rows.hpp)
+      const ScatterSource2 source{order.data(),       stencil_.data(),          state_.mass.data(),
+                                  particles_.v.data(), particles_.volume.data(), state_.kirchhoff.data(),
+                                  ext_force_.data()};
+      const ScatterTarget2 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
+                                  grid_.force_external.data(), stride[1]};
+      const ScatterFields fields{what.mass, what.momentum, what.forces, external};
+      schedule_.for_each_block([&](Index k_begin, Index k_end) { scatter_rows(source, target, fields, k_begin, k_end); });
+      fold_grid(what);
+      return;
+    }
+  }
   schedule_.for_each([&](Index k, Index p) {
     prefetch_ahead(order, k, state_.mass, particles_.v);
     if (what.forces) prefetch_ahead(order, k, particles_.volume, state_.kirchhoff, ext_force_);
@@ -473,13 +497,15 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
           if (!apply_law(p, &pl)) bad = std::min(bad, p);
           continue;
         }
+        const double alpha_before = state_.history[p].eq_plastic_strain;
+        if (lanes.yielded >> l & 1u) add_plastic_increment(state_.history[p], lanes, l);
         StressResult r;
         r.kirchhoff(0, 0) = lanes.k00[l], r.kirchhoff(0, 1) = lanes.k01[l];
         r.kirchhoff(1, 0) = lanes.k10[l], r.kirchhoff(1, 1) = lanes.k11[l];
         r.J = lanes.J[l];
         r.out_of_plane_strain = lanes.out_of_plane[l];
         r.energy = lanes.energy[l];
-        const double alpha_before = state_.history[p].eq_plastic_strain;
+        r.dissipation = lanes.yielded >> l & 1u ? lanes.dissipation[l] : 0.0;
         store_law_result(p, r, alpha_before, state_.eq_plastic_hardening[p] - alpha_before);
       }
     }

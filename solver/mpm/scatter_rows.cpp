@@ -1,0 +1,114 @@
+#include "solver/mpm/scatter_rows.hpp"
+
+#include <immintrin.h>
+
+namespace pdmpm::mpm {
+
+namespace {
+
+// The particle loops run in block order, where runs of consecutive indices are a
+// lattice row long: each iteration asks for the arrays of the particle 8 positions on.
+constexpr Index kRowsAhead = 8;
+
+void prefetch_particle(const ScatterSource2& s, ScatterFields what, Index p) {
+  __builtin_prefetch(s.mass + p);
+  __builtin_prefetch(s.velocity + p);
+  if (what.forces) {
+    __builtin_prefetch(s.volume + p);
+    __builtin_prefetch(s.kirchhoff + p);
+    __builtin_prefetch(reinterpret_cast<const char*>(s.kirchhoff + p) + sizeof(Mat<3>) - 1);
+    __builtin_prefetch(s.external + p);
+  }
+}
+
+void scatter_rows_scalar(const ScatterSource2& s, const ScatterTarget2& g, ScatterFields what, Index k_begin,
+                         Index k_end) {
+  const IVec<2> stride(1, g.row_stride);
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kRowsAhead < k_end) prefetch_particle(s, what, s.order[k + kRowsAhead]);
+    const Index p = s.order[k];
+    const double m = s.mass[p];
+    const Vec<2> mv = m * s.velocity[p];
+    const Mat<2> Vtau = s.volume[p] * s.kirchhoff[p].template topLeftCorner<2, 2>();
+    const Vec<2> fe = s.external[p];
+    for_each_grid_node<2, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<2>& grad) {
+      if (what.mass) g.mass[node] += w * m;
+      if (what.momentum) g.momentum[node] += w * mv;
+      if (what.forces) {
+        g.force_internal[node] -= Vtau * grad;
+        if (what.external) g.force_external[node] += w * fe;
+      }
+    });
+  }
+}
+
+// One stencil row per instruction: lanes 0–2 are the row's three nodes (mass), lanes
+// 0–5 their x, y pairs (vectors). Masked loads and stores touch only those nodes.
+__attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2& s, const ScatterTarget2& g,
+                                                            ScatterFields what, Index k_begin, Index k_end) {
+  const __mmask8 three = 0x07, six = 0x3f;
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kRowsAhead < k_end) prefetch_particle(s, what, s.order[k + kRowsAhead]);
+    const Index p = s.order[k];
+    const Stencil<2>& st = s.stencil[k];
+    const double m = s.mass[p];
+    const Vec<2> v = s.velocity[p];
+    const double mvx = m * v[0], mvy = m * v[1];
+    const __m512d mv = _mm512_set_pd(0.0, 0.0, mvy, mvx, mvy, mvx, mvy, mvx);
+    const std::array<double, 3>&x = st.w[0], &dx = st.dw[0];
+    const __m512d wx = _mm512_set_pd(0.0, 0.0, 0.0, 0.0, 0.0, x[2], x[1], x[0]);
+    const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
+    const __m512d dwx2 = _mm512_set_pd(0.0, 0.0, dx[2], dx[2], dx[1], dx[1], dx[0], dx[0]);
+    __m512d va = _mm512_setzero_pd(), vb = va, fe = va;
+    if (what.forces) {
+      const double vol = s.volume[p];
+      const Mat<3>& tau = s.kirchhoff[p];
+      const double v00 = vol * tau(0, 0), v10 = vol * tau(1, 0), v01 = vol * tau(0, 1), v11 = vol * tau(1, 1);
+      va = _mm512_set_pd(0.0, 0.0, v10, v00, v10, v00, v10, v00);  // −(V τ ∇S) = −(va ∂S/∂x + vb ∂S/∂y)
+      vb = _mm512_set_pd(0.0, 0.0, v11, v01, v11, v01, v11, v01);
+      const Vec<2> f = s.external[p];
+      fe = _mm512_set_pd(0.0, 0.0, f[1], f[0], f[1], f[0], f[1], f[0]);
+    }
+    const Index base = st.first[0] + st.first[1] * g.row_stride;
+    for (int j = 0; j < 3; ++j) {
+      const Index row = base + j * g.row_stride;
+      const __m512d wy = _mm512_set1_pd(st.w[1][j]);
+      const __m512d w2 = _mm512_mul_pd(wx2, wy);  // S of node i in lanes 2i, 2i + 1
+      if (what.mass) {
+        double* at = g.mass + row;
+        const __m512d w = _mm512_mul_pd(wx, wy);
+        _mm512_mask_storeu_pd(at, three,
+                              _mm512_add_pd(_mm512_maskz_loadu_pd(three, at), _mm512_mul_pd(w, _mm512_set1_pd(m))));
+      }
+      if (what.momentum) {
+        double* at = g.momentum[row].data();
+        _mm512_mask_storeu_pd(at, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, at), _mm512_mul_pd(w2, mv)));
+      }
+      if (what.forces) {
+        const __m512d gx = _mm512_mul_pd(dwx2, wy), gy = _mm512_mul_pd(_mm512_set1_pd(st.dw[1][j]), wx2);
+        double* at = g.force_internal[row].data();
+        const __m512d f = _mm512_add_pd(_mm512_mul_pd(va, gx), _mm512_mul_pd(vb, gy));
+        _mm512_mask_storeu_pd(at, six, _mm512_sub_pd(_mm512_maskz_loadu_pd(six, at), f));
+        if (what.external) {
+          double* ate = g.force_external[row].data();
+          _mm512_mask_storeu_pd(ate, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, ate), _mm512_mul_pd(w2, fe)));
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<LaneVariant<ScatterRowsFunction>> scatter_rows_variants() {
+  // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
+  return lane_variants<ScatterRowsFunction>(scatter_rows_scalar, scatter_rows_scalar, scatter_rows_avx512);
+}
+
+void scatter_rows(const ScatterSource2& source, const ScatterTarget2& grid, ScatterFields what, Index k_begin,
+                  Index k_end) {
+  static const ScatterRowsFunction chosen = choose_lane_variant(scatter_rows_variants());
+  chosen(source, grid, what, k_begin, k_end);
+}
+
+}  // namespace pdmpm::mpm

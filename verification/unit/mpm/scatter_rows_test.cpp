@@ -1,0 +1,94 @@
+// The vector scatter (a stencil row per instruction) gives every node the scalar
+// scatter's bits: random particles on a lattice, several to a cell so that nodes sum
+// many contributions in order, uGIMP stencils from the code that makes them, random
+// stresses, velocities and external forces, each combination of the fields.
+#include "solver/mpm/scatter_rows.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace pdmpm::mpm {
+namespace {
+
+struct Particles {
+  std::vector<Index> order;
+  std::vector<Stencil<2>> stencil;
+  std::vector<double> mass, volume;
+  std::vector<Vec<2>> velocity, external;
+  std::vector<Mat<3>> kirchhoff;
+};
+
+// n particles in a grid of `nodes` × `nodes` (h = 1), away from its edges, in a shuffled order.
+Particles random_particles(int n, int nodes, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, nodes - 3.0);
+  Particles s;
+  for (int i = 0; i < n; ++i) {
+    s.order.push_back(i);
+    const Vec<2> x(inside(rng), inside(rng));
+    s.stencil.push_back(make_stencil<2>(ShapeFunction::gimp, x, 1.0, Vec<2>::Constant(0.25)));
+    s.mass.push_back(1.0 + 0.5 * u(rng));
+    s.volume.push_back(0.25 + 0.1 * u(rng));
+    s.velocity.emplace_back(u(rng), u(rng));
+    s.external.emplace_back(u(rng), u(rng));
+    Mat<3> t = Mat<3>::Zero();
+    t(0, 0) = 1e8 * u(rng), t(1, 1) = 1e8 * u(rng), t(0, 1) = t(1, 0) = 1e8 * u(rng), t(2, 2) = 1e7 * u(rng);
+    s.kirchhoff.push_back(t);
+  }
+  std::shuffle(s.order.begin(), s.order.end(), rng);  // stencils stay in position order
+  return s;
+}
+
+struct Grid2 {
+  std::vector<double> mass;
+  std::vector<Vec<2>> momentum, force_internal, force_external;
+  explicit Grid2(int nodes)
+      : mass(nodes * nodes, 0.0),
+        momentum(nodes * nodes, Vec<2>::Zero()),
+        force_internal(nodes * nodes, Vec<2>::Zero()),
+        force_external(nodes * nodes, Vec<2>::Zero()) {}
+};
+
+bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
+}
+bool same_bits(const std::vector<Vec<2>>& a, const std::vector<Vec<2>>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec<2>)) == 0;
+}
+
+TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
+  const int nodes = 12, n = 400;  // ≈ 4 particles per cell: nodes sum up to ~36 contributions
+  const Particles s = random_particles(n, nodes, 3);
+  const ScatterSource2 source{s.order.data(),      s.stencil.data(), s.mass.data(),     s.velocity.data(),
+                              s.volume.data(), s.kirchhoff.data(), s.external.data()};
+  const auto variants = scatter_rows_variants();
+  ASSERT_GE(variants.size(), 1u);
+  for (int bits = 1; bits < 16; ++bits) {
+    const ScatterFields what{(bits & 1) != 0, (bits & 2) != 0, (bits & 4) != 0, (bits & 8) != 0};
+    if (!what.mass && !what.momentum && !what.forces) continue;  // the external force goes with the forces
+    Grid2 reference(nodes);
+    ScatterTarget2 target{reference.mass.data(), reference.momentum.data(), reference.force_internal.data(),
+                          reference.force_external.data(), nodes};
+    variants.front().function(source, target, what, 0, n);
+    EXPECT_NE(reference.mass[5 * nodes + 5] != 0.0 || reference.momentum[5 * nodes + 5].norm() > 0.0 ||
+                  reference.force_internal[5 * nodes + 5].norm() > 0.0,
+              false)
+        << "fields " << bits << ": the scatter reached no node";
+    for (const auto& v : variants) {
+      Grid2 grid(nodes);
+      target = {grid.mass.data(), grid.momentum.data(), grid.force_internal.data(), grid.force_external.data(), nodes};
+      v.function(source, target, what, 0, n / 3);  // in two runs, as blocks run
+      v.function(source, target, what, n / 3, n);
+      EXPECT_TRUE(same_bits(grid.mass, reference.mass)) << v.name << ", fields " << bits;
+      EXPECT_TRUE(same_bits(grid.momentum, reference.momentum)) << v.name << ", fields " << bits;
+      EXPECT_TRUE(same_bits(grid.force_internal, reference.force_internal)) << v.name << ", fields " << bits;
+      EXPECT_TRUE(same_bits(grid.force_external, reference.force_external)) << v.name << ", fields " << bits;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace pdmpm::mpm
