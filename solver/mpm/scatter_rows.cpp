@@ -8,7 +8,7 @@ namespace {
 
 // The particle loops run in block order, where runs of consecutive indices are a
 // lattice row long: each iteration asks for the arrays of the particle 8 positions on.
-constexpr Index kRowsAhead = 8;
+constexpr Index kRowsAhead = 32;
 
 void prefetch_particle(const ScatterSource2& s, ScatterFields what, Index p) {
   __builtin_prefetch(s.mass + p);

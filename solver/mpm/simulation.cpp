@@ -9,7 +9,9 @@
 #include <limits>
 
 #include "solver/core/error.hpp"
+#include "solver/mpm/deformation_lanes.hpp"
 #include "solver/mpm/deterministic_sum.hpp"
+#include "solver/mpm/g2p_rows.hpp"
 #include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/kinematics.hpp"
@@ -378,19 +380,30 @@ void Simulation<D>::update_nonlocal() {
   for (Index p : active_) state_.eq_plastic_hardening[p] = (1.0 - m) * a[p] + m * avg[p];
 }
 
+// L = Σ v_I ⊗ ∇S_I of the particle at k in the schedule from the grid velocity vg.
+template <int D>
+Mat<D> Simulation<D>::velocity_gradient(Index k, const std::vector<Vec<D>>& vg) const {
+  Mat<D> L = Mat<D>::Zero();
+  for_each_grid_node<D>(stencil_[k], K_, grid_.stride,
+                        [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
+  return L;
+}
+
+// uGIMP half-widths of particle p that follow its stretch (gimp_domain = "stretch").
+template <int D>
+void Simulation<D>::stretch_domain(Index p) {
+  if (settings_.shape != ShapeFunction::gimp || settings_.gimp_domain != GimpDomain::stretch) return;
+  const double lp0 = 0.5 * particles_.lattice.spacing;
+  for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
+}
+
 // F of the particle at k in the schedule from the grid velocity vg (and its uGIMP
 // half-widths if the domains stretch).
 template <int D>
 void Simulation<D>::advance_deformation(Index k, const std::vector<Vec<D>>& vg, double dt) {
   const Index p = schedule_.order()[k];
-  Mat<D> L = Mat<D>::Zero();
-  for_each_grid_node<D>(stencil_[k], K_, grid_.stride,
-                        [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
-  state_.F[p] = cayley_increment<D>(L, dt) * state_.F[p];
-  if (settings_.shape == ShapeFunction::gimp && settings_.gimp_domain == GimpDomain::stretch) {
-    const double lp0 = 0.5 * particles_.lattice.spacing;
-    for (int a = 0; a < D; ++a) state_.half_width[p][a] = std::min(0.5 * grid_.h, lp0 * std::abs(state_.F[p](a, a)));
-  }
+  state_.F[p] = cayley_increment<D>(velocity_gradient(k, vg), dt) * state_.F[p];
+  stretch_domain(p);
 }
 
 // F, the law and the ductile criterion of every active particle. The plane-stress
@@ -449,7 +462,7 @@ template <int D>
 void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double dt, const PlaneStressLaw& law,
                                            Index& bad) {
   if constexpr (D == 2) {
-    static_assert(kPolarLanes == kLawLanes);
+    static_assert(kPolarLanes == kLawLanes && kDeformationLanes == kLawLanes);
     const std::vector<Index>& order = schedule_.order();
     const Index na = static_cast<Index>(order.size());
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
@@ -460,12 +473,21 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       for (Index k = k0; k < k0 + n; ++k)  // the next group's
         prefetch_ahead(order, k, state_.F, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
                        state_.out_of_plane_strain, state_.energy, state_.dissipation, state_.failed);
-      PolarLanes polar;
+      DeformationLanes def;
       for (int l = 0; l < kLawLanes; ++l) {
         const Index k = k0 + std::min<Index>(l, n - 1);
-        if (l < n) advance_deformation(k, vg, dt);
-        const Mat<2>& F = state_.F[order[k]];
-        polar.f00[l] = F(0, 0), polar.f10[l] = F(1, 0), polar.f01[l] = F(0, 1), polar.f11[l] = F(1, 1);
+        const Mat<2> L = velocity_gradient(k, vg), &F = state_.F[order[k]];
+        def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
+        def.f00[l] = F(0, 0), def.f01[l] = F(0, 1), def.f10[l] = F(1, 0), def.f11[l] = F(1, 1);
+      }
+      advance_deformation_lanes(def, dt);
+      PolarLanes polar;
+      for (int l = 0; l < kLawLanes; ++l) {
+        polar.f00[l] = def.f00[l], polar.f10[l] = def.f10[l], polar.f01[l] = def.f01[l], polar.f11[l] = def.f11[l];
+        if (l >= n) continue;
+        const Index p = order[k0 + l];
+        state_.F[p] << def.f00[l], def.f01[l], def.f10[l], def.f11[l];
+        stretch_domain(p);
       }
       const unsigned polar_by_point = polar_log_lanes(polar);
       PlaneStressLanes lanes;
@@ -802,13 +824,28 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
                             [&](Index node, double w, const Vec<D>&) { grid_.momentum[node] += w * mv; });
     }
   };
+  // The particles at schedule positions [k_begin, k_end); in 2D with 3 × 3 stencils a
+  // stencil row per instruction (g2p_rows.hpp).
+  auto move_run = [&](Index k_begin, Index k_end) {
+    if constexpr (D == 2) {
+      if (K_ == 3) {
+        const G2PArrays2 arrays{order.data(),          stencil_.data(),      state_.mass.data(),
+                                grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
+                                particles_.u.data(),   grid_.momentum.data(),     stride[1]};
+        if (!g2p_rows(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
+        return;
+      }
+    }
+    for (Index k = k_begin; k < k_end; ++k) move_particle(k, order[k]);
+  };
   if (remap) {
     clear_grid({.momentum = true});
-    schedule_.for_each(move_particle);
+    schedule_.for_each_block(move_run);
     fold_grid({.momentum = true});
   } else {
+    constexpr Index kChunk = 256;
 #pragma omp parallel for schedule(static) if (na >= kParallelMin)
-    for (Index k = 0; k < na; ++k) move_particle(k, order[k]);
+    for (Index k0 = 0; k0 < na; k0 += kChunk) move_run(k0, std::min(na, k0 + kChunk));
   }
   if (!finite.load()) {
     const Energies e = energies();

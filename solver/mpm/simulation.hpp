@@ -143,6 +143,8 @@ class Simulation {
   void update_stress_in_lanes(const std::vector<Vec<D>>& grid_velocity, double dt, const PlaneStressLaw& law,
                               Index& bad);
   void advance_deformation(Index k, const std::vector<Vec<D>>& grid_velocity, double dt);
+  Mat<D> velocity_gradient(Index k, const std::vector<Vec<D>>& grid_velocity) const;
+  void stretch_domain(Index p);
   bool apply_law(Index p, const PolarLog<D>* polar);
   void store_law_result(Index p, const StressResult& r, double alpha_before, double offset);
   void update_nonlocal();

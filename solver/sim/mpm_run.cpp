@@ -181,6 +181,7 @@ nlohmann::json MpmRun<D>::summary() const {
     max_vm = std::max(max_vm, sim_.von_mises(i));
   }
   const auto& st = s_.settings;
+  const mpm::StepPhaseSeconds& ph = sim_.phase_seconds();
   return {{"solver", "mpm"},
           {"model", "mpm"},
           {"constitutive", std::string(name(st.material.model))},
@@ -195,6 +196,8 @@ nlohmann::json MpmRun<D>::summary() const {
           {"dt", dt_},
           {"dt_estimate", {{"cfl_step_at_start", dt_cfl0_}}},
           {"end_time", dt_ * static_cast<double>(steps_done_)},
+          {"wall_time_phases",
+           {{"prepare", ph.prepare}, {"p2g", ph.p2g}, {"grid", ph.grid}, {"g2p", ph.g2p}, {"stress", ph.stress}}},
           {"metrics",
            {{"failed_particles", failed_},
             {"max_eq_plastic_strain", max_eps},

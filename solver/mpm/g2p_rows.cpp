@@ -1,0 +1,113 @@
+#include "solver/mpm/g2p_rows.hpp"
+
+#include <immintrin.h>
+
+namespace pdmpm::mpm {
+
+namespace {
+
+// As in the scatter: the particle 8 schedule positions on is asked for ahead.
+constexpr Index kG2PAhead = 8;
+
+void prefetch_particle(const G2PArrays2& a, bool remap, Index p) {
+  __builtin_prefetch(a.velocity + p);
+  __builtin_prefetch(a.displacement + p);
+  if (remap) __builtin_prefetch(a.mass + p);
+}
+
+bool g2p_rows_scalar(const G2PArrays2& a, G2PParameters q, Index k_begin, Index k_end) {
+  const IVec<2> stride(1, a.row_stride);
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kG2PAhead < k_end) prefetch_particle(a, q.remap, a.order[k + kG2PAhead]);
+    const Index p = a.order[k];
+    Vec<2> v_pic = Vec<2>::Zero(), dv = Vec<2>::Zero();
+    for_each_grid_node<2, 3>(a.stencil[k], stride, [&](Index node, double w, const Vec<2>&) {
+      v_pic += w * a.grid_velocity_new[node];
+      dv += w * (a.grid_velocity_new[node] - a.grid_velocity[node]);
+    });
+    a.velocity[p] = q.flip * (a.velocity[p] + dv) + (1.0 - q.flip) * v_pic;
+    a.displacement[p] += q.dt * v_pic;
+    finite = finite && a.velocity[p].allFinite() && a.displacement[p].allFinite();
+    if (q.remap) {
+      const Vec<2> mv = a.mass[p] * a.velocity[p];
+      for_each_grid_node<2, 3>(a.stencil[k], stride,
+                               [&](Index node, double w, const Vec<2>&) { a.grid_momentum[node] += w * mv; });
+    }
+  }
+  return finite;
+}
+
+// Node i's x, y of a stencil row (lanes 2i, 2i + 1).
+__attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m512d row, int i) {
+  switch (i) {
+    case 0:
+      return __builtin_shufflevector(row, row, 0, 1);
+    case 1:
+      return __builtin_shufflevector(row, row, 2, 3);
+    default:
+      return __builtin_shufflevector(row, row, 4, 5);
+  }
+}
+
+__attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2PParameters q, Index k_begin,
+                                                        Index k_end) {
+  const __mmask8 six = 0x3f;  // a row's three nodes, x and y
+  const __m128d flip = _mm_set1_pd(q.flip), pic = _mm_set1_pd(1.0 - q.flip), dt = _mm_set1_pd(q.dt);
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kG2PAhead < k_end) prefetch_particle(a, q.remap, a.order[k + kG2PAhead]);
+    const Index p = a.order[k];
+    const Stencil<2>& st = a.stencil[k];
+    const std::array<double, 3>& x = st.w[0];
+    const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
+    const Index base = st.first[0] + st.first[1] * a.row_stride;
+    __m128d v_pic = _mm_setzero_pd(), dv = _mm_setzero_pd();
+    for (int j = 0; j < 3; ++j) {
+      const Index row = base + j * a.row_stride;
+      const __m512d w2 = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
+      const __m512d vn = _mm512_maskz_loadu_pd(six, a.grid_velocity_new[row].data());
+      const __m512d vo = _mm512_maskz_loadu_pd(six, a.grid_velocity[row].data());
+      const __m512d c_pic = _mm512_mul_pd(w2, vn), c_dv = _mm512_mul_pd(w2, _mm512_sub_pd(vn, vo));
+      for (int i = 0; i < 3; ++i) {  // node by node, as the scalar sum
+        v_pic = _mm_add_pd(v_pic, node_pair(c_pic, i));
+        dv = _mm_add_pd(dv, node_pair(c_dv, i));
+      }
+    }
+    double* vp = a.velocity[p].data();
+    double* up = a.displacement[p].data();
+    const __m128d v = _mm_add_pd(_mm_mul_pd(flip, _mm_add_pd(_mm_loadu_pd(vp), dv)), _mm_mul_pd(pic, v_pic));
+    const __m128d u = _mm_add_pd(_mm_loadu_pd(up), _mm_mul_pd(dt, v_pic));
+    _mm_storeu_pd(vp, v);
+    _mm_storeu_pd(up, u);
+    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN.
+    const __m128d zero = _mm_setzero_pd();
+    finite = finite && _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(v, v), zero)) == 3 &&
+        _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(u, u), zero)) == 3;
+    if (q.remap) {
+      const double m = a.mass[p], mvx = m * v[0], mvy = m * v[1];
+      const __m512d mv3 = _mm512_set_pd(0.0, 0.0, mvy, mvx, mvy, mvx, mvy, mvx);  // m v per node
+      for (int j = 0; j < 3; ++j) {
+        const Index row = base + j * a.row_stride;
+        const __m512d w2 = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
+        double* at = a.grid_momentum[row].data();
+        _mm512_mask_storeu_pd(at, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, at), _mm512_mul_pd(w2, mv3)));
+      }
+    }
+  }
+  return finite;
+}
+
+}  // namespace
+
+std::vector<LaneVariant<G2PRowsFunction>> g2p_rows_variants() {
+  // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
+  return lane_variants<G2PRowsFunction>(g2p_rows_scalar, g2p_rows_scalar, g2p_rows_avx512);
+}
+
+bool g2p_rows(const G2PArrays2& arrays, G2PParameters parameters, Index k_begin, Index k_end) {
+  static const G2PRowsFunction chosen = choose_lane_variant(g2p_rows_variants());
+  return chosen(arrays, parameters, k_begin, k_end);
+}
+
+}  // namespace pdmpm::mpm
