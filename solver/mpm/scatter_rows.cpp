@@ -15,8 +15,6 @@ void prefetch_particle(const ScatterSource2& s, ScatterFields what, Index p) {
   __builtin_prefetch(s.velocity + p);
   if (what.forces) {
     __builtin_prefetch(s.volume + p);
-    __builtin_prefetch(s.kirchhoff + p);
-    __builtin_prefetch(reinterpret_cast<const char*>(s.kirchhoff + p) + sizeof(Mat<3>) - 1);
     __builtin_prefetch(s.external + p);
   }
 }
@@ -29,7 +27,7 @@ void scatter_rows_scalar(const ScatterSource2& s, const ScatterTarget2& g, Scatt
     const Index p = s.order[k];
     const double m = s.mass[p];
     const Vec<2> mv = m * s.velocity[p];
-    const Mat<2> Vtau = s.volume[p] * s.kirchhoff[p].template topLeftCorner<2, 2>();
+    const Mat<2> Vtau = s.volume[p] * s.tau[k];
     const Vec<2> fe = s.external[p];
     for_each_grid_node<2, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<2>& grad) {
       if (what.mass) g.mass[node] += w * m;
@@ -62,7 +60,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
     __m512d va = _mm512_setzero_pd(), vb = va, fe = va;
     if (what.forces) {
       const double vol = s.volume[p];
-      const Mat<3>& tau = s.kirchhoff[p];
+      const Mat<2>& tau = s.tau[k];
       const double v00 = vol * tau(0, 0), v10 = vol * tau(1, 0), v01 = vol * tau(0, 1), v11 = vol * tau(1, 1);
       va = _mm512_set_pd(0.0, 0.0, v10, v00, v10, v00, v10, v00);  // −(V τ ∇S) = −(va ∂S/∂x + vb ∂S/∂y)
       vb = _mm512_set_pd(0.0, 0.0, v11, v01, v11, v01, v11, v01);

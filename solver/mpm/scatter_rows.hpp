@@ -15,14 +15,15 @@
 
 namespace pdmpm::mpm {
 
-// The particles' data, read as source.array[order[k]] for the run's positions k.
+// The particles' data, read as source.array[order[k]] for the run's positions k (the
+// stencil and the stress as array[k]).
 struct ScatterSource2 {
   const Index* order = nullptr;
   const Stencil<2>* stencil = nullptr;  // stencil[k], in schedule order
   const double* mass = nullptr;
   const Vec<2>* velocity = nullptr;
   const double* volume = nullptr;
-  const Mat<3>* kirchhoff = nullptr;
+  const Mat<2>* tau = nullptr;       // in-plane Kirchhoff stress, tau[k] in schedule order
   const Vec<2>* external = nullptr;  // external force of the particle
 };
 

@@ -50,6 +50,7 @@ class ScatterSchedule {
       block[k] = b;
     }
     if (same) return;
+    ++generation_;
     particles_ = particles;
     start_.assign(static_cast<std::size_t>(nb) + 1, 0);
     for (std::size_t k = 0; k < particles.size(); ++k) ++start_[block[k] + 1];
@@ -74,6 +75,8 @@ class ScatterSchedule {
   // The particles in schedule order (block by block); per-step particle data such as
   // the stencils is stored in this order, so the hot loops read it sequentially.
   const std::vector<Index>& order() const { return order_; }
+  // Changes whenever order() does: data kept in schedule order is valid while it stands.
+  std::uint64_t generation() const { return generation_; }
 
   // fn(position in order(), particle index) for every particle, scheduled as described above.
   template <class Fn>
@@ -104,6 +107,7 @@ class ScatterSchedule {
 
  private:
   IVec<D> nblocks_ = IVec<D>::Ones();
+  std::uint64_t generation_ = 0;
   std::vector<Index> start_, order_;
   std::vector<Index> particles_, block_;  // of the last build: the particles and their blocks
   std::vector<Index> fill_;               // scratch of build()

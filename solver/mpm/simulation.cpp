@@ -157,6 +157,7 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
 
 template <int D>
 void Simulation<D>::initialise_particle(Index p) {
+  tau_generation_ = std::numeric_limits<std::uint64_t>::max();
   const double dx = particles_.lattice.spacing;
   state_.mass[p] = settings_.material.elastic.rho * particles_.volume[p];
   state_.half_width[p] = Vec<D>::Constant(0.5 * dx);
@@ -311,6 +312,18 @@ void Simulation<D>::fold_grid(Scatter what) {
   if (what.forces) boundary_.fold(nullptr, &grid_.force_internal, &grid_.force_external);
 }
 
+// tau_in_order_ from the particles' stress, when the schedule changed since the stress
+// update wrote it (or something else set a stress).
+template <int D>
+void Simulation<D>::refresh_tau_in_order() {
+  const std::vector<Index>& order = schedule_.order();
+  const Index na = static_cast<Index>(order.size());
+  tau_in_order_.resize(order.size());
+#pragma omp parallel for schedule(static) if (na >= kParallelMin)
+  for (Index k = 0; k < na; ++k) keep_tau_in_order(k, order[k]);
+  tau_generation_ = schedule_.generation();
+}
+
 template <int D>
 void Simulation<D>::scatter(Scatter what) {
   clear_grid(what);
@@ -318,9 +331,10 @@ void Simulation<D>::scatter(Scatter what) {
   const bool external = any_external_force_;
   const std::vector<Index>& order = schedule_.order();
   if constexpr (D == 2) {
-    if (K_ == 3) {  // a stencil row per instruction (scatter_rows.hpp)
+    if (rows()) {  // a stencil row per instruction (scatter_rows.hpp)
+      if (what.forces && tau_generation_ != schedule_.generation()) refresh_tau_in_order();
       const ScatterSource2 source{order.data(),       stencil_.data(),          state_.mass.data(),
-                                  particles_.v.data(), particles_.volume.data(), state_.kirchhoff.data(),
+                                  particles_.v.data(), particles_.volume.data(), tau_in_order_.data(),
                                   ext_force_.data()};
       const ScatterTarget2 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride[1]};
@@ -423,6 +437,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
                       "(stable step estimate {} s)",
                       steps_, bad, dt, stable_dt()));
   };
+  tau_in_order_.resize(schedule_.order().size());
+  tau_generation_ = schedule_.generation();
   if constexpr (D == 2) {
     if (const std::optional<PlaneStressLaw> law = constitutive_.plane_stress_law()) {
       update_stress_in_lanes(vg, dt, *law, bad);
@@ -448,8 +464,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
     const Index p = order[k];
     prefetch_ahead(order, k, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
                    state_.out_of_plane_strain, state_.energy, state_.dissipation);
-    if (state_.failed[p]) continue;  // a failed particle carries no stress
-    if (!apply_law(p, log_strain ? &polar_[k] : nullptr)) bad = std::min(bad, p);
+    if (!state_.failed[p] && !apply_law(p, log_strain ? &polar_[k] : nullptr)) bad = std::min(bad, p);
+    keep_tau_in_order(k, p);  // a failed particle's: zero, it carries no stress
   }
   throw_if_bad();
 }
@@ -530,6 +546,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         r.dissipation = lanes.yielded >> l & 1u ? lanes.dissipation[l] : 0.0;
         store_law_result(p, r, alpha_before, state_.eq_plastic_hardening[p] - alpha_before);
       }
+      for (int l = 0; l < n; ++l) keep_tau_in_order(k0 + l, order[k0 + l]);
     }
   } else {
     (void)vg, (void)dt, (void)law, (void)bad;
@@ -858,6 +875,7 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
 
 template <int D>
 void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
+  tau_generation_ = std::numeric_limits<std::uint64_t>::max();  // a stress set outside the update
   state_.F[p] = F;
   PointHistory h = state_.history[p];
   const StressResult r = constitutive_.update(F, h, state_.eq_plastic_hardening[p] - h.eq_plastic_strain);
@@ -936,6 +954,7 @@ double Simulation<D>::triaxiality(Index p) const {
 
 template <int D>
 void Simulation<D>::checkpoint(core::StateArchive& a) {
+  tau_generation_ = std::numeric_limits<std::uint64_t>::max();  // a restored stress: refilled from it
   a.expect("mpm/grid_nodes", grid_.size());
   auto& st = state_;
   a.sync("mpm/mass", st.mass);

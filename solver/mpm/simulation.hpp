@@ -20,6 +20,7 @@
 // F is updated by the Cayley increment (kinematics.hpp), so a rigid rotation of
 // the grid velocity field rotates each particle exactly.
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -167,6 +168,16 @@ class Simulation {
   std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
   std::vector<IVec<D>> cell_;        // per active particle this step: its cell (scratch of compute_stencils)
   std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
+  // In 2D with 3 × 3 stencils the scatter reads the in-plane Kirchhoff stress in schedule
+  // order, written where the stress update writes the particle's: it streams instead of
+  // gathering 72-byte tensors. Valid while schedule_.generation() == tau_generation_.
+  std::vector<Mat<D>> tau_in_order_;
+  std::uint64_t tau_generation_ = std::numeric_limits<std::uint64_t>::max();
+  bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)
+  void keep_tau_in_order(Index k, Index p) {
+    if (rows()) tau_in_order_[k] = state_.kirchhoff[p].template topLeftCorner<D, D>();
+  }
+  void refresh_tau_in_order();
   std::vector<Vec<D>> ext_force_;    // per particle external force this step (N)
   bool any_external_force_ = false;  // some active particle has one this step
   std::vector<std::vector<Index>> traction_particles_;

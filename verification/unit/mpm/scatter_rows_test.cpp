@@ -18,7 +18,7 @@ struct Particles {
   std::vector<Stencil<2>> stencil;
   std::vector<double> mass, volume;
   std::vector<Vec<2>> velocity, external;
-  std::vector<Mat<3>> kirchhoff;
+  std::vector<Mat<2>> tau;  // in position order
 };
 
 // n particles in a grid of `nodes` × `nodes` (h = 1), away from its edges, in a shuffled order.
@@ -34,11 +34,11 @@ Particles random_particles(int n, int nodes, unsigned seed) {
     s.volume.push_back(0.25 + 0.1 * u(rng));
     s.velocity.emplace_back(u(rng), u(rng));
     s.external.emplace_back(u(rng), u(rng));
-    Mat<3> t = Mat<3>::Zero();
-    t(0, 0) = 1e8 * u(rng), t(1, 1) = 1e8 * u(rng), t(0, 1) = t(1, 0) = 1e8 * u(rng), t(2, 2) = 1e7 * u(rng);
-    s.kirchhoff.push_back(t);
+    Mat<2> t;
+    t(0, 0) = 1e8 * u(rng), t(1, 1) = 1e8 * u(rng), t(0, 1) = t(1, 0) = 1e8 * u(rng);
+    s.tau.push_back(t);
   }
-  std::shuffle(s.order.begin(), s.order.end(), rng);  // stencils stay in position order
+  std::shuffle(s.order.begin(), s.order.end(), rng);  // stencils and stresses stay in position order
   return s;
 }
 
@@ -63,7 +63,7 @@ TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
   const int nodes = 12, n = 400;  // ≈ 4 particles per cell: nodes sum up to ~36 contributions
   const Particles s = random_particles(n, nodes, 3);
   const ScatterSource2 source{s.order.data(),      s.stencil.data(), s.mass.data(),     s.velocity.data(),
-                              s.volume.data(), s.kirchhoff.data(), s.external.data()};
+                              s.volume.data(), s.tau.data(), s.external.data()};
   const auto variants = scatter_rows_variants();
   ASSERT_GE(variants.size(), 1u);
   for (int bits = 1; bits < 16; ++bits) {
