@@ -2,14 +2,13 @@
 
 #include <immintrin.h>
 
+#include "solver/mpm/parallel.hpp"
+
 namespace pdmpm::mpm {
 
 namespace {
 
-// As in the scatter: the particle 8 schedule positions on is asked for ahead.
-constexpr Index kG2PAhead = 8;
-
-void prefetch_particle(const G2PArrays2& a, bool remap, Index p) {
+void prefetch_moved(const G2PArrays2& a, bool remap, Index p) {
   __builtin_prefetch(a.velocity + p);
   __builtin_prefetch(a.displacement + p);
   if (remap) __builtin_prefetch(a.mass + p);
@@ -19,7 +18,7 @@ bool g2p_rows_scalar(const G2PArrays2& a, G2PParameters q, Index k_begin, Index 
   const IVec<2> stride(1, a.row_stride);
   bool finite = true;
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kG2PAhead < k_end) prefetch_particle(a, q.remap, a.order[k + kG2PAhead]);
+    if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
     const Index p = a.order[k];
     Vec<2> v_pic = Vec<2>::Zero(), dv = Vec<2>::Zero();
     for_each_grid_node<2, 3>(a.stencil[k], stride, [&](Index node, double w, const Vec<2>&) {
@@ -56,7 +55,7 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
   const __m128d flip = _mm_set1_pd(q.flip), pic = _mm_set1_pd(1.0 - q.flip), dt = _mm_set1_pd(q.dt);
   bool finite = true;
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kG2PAhead < k_end) prefetch_particle(a, q.remap, a.order[k + kG2PAhead]);
+    if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
     const Index p = a.order[k];
     const Stencil<2>& st = a.stencil[k];
     const std::array<double, 3>& x = st.w[0];

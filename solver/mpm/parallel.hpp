@@ -9,4 +9,10 @@ namespace pdmpm::mpm {
 
 inline constexpr Index kParallelMin = 4096;
 
+// The particle loops run in the scatter schedule's order: cell block by cell block, so
+// consecutive particles are runs of a lattice row (8 in 2D at two sites per cell), too
+// short for the hardware prefetcher. Each loop asks for the arrays of the particle this
+// many positions on (16 and 32 measured no faster on the 200² plate).
+inline constexpr Index kPrefetchAhead = 8;
+
 }  // namespace pdmpm::mpm

@@ -19,7 +19,7 @@ struct ParticleState {
   std::vector<double> J;                     // volume ratio (3D, thickness change included)
   std::vector<double> out_of_plane_strain;   // plane stress ε₃₃ / bar lateral strain
   std::vector<PointHistory> history;         // plastic strain, ε̄_p
-  std::vector<double> eq_plastic_hardening;  // ε̂_p used by hardening/failure (= ε̄_p when local)
+  std::vector<double> eq_plastic_hardening;  // ε̂_p used by hardening/failure (non-local models only)
   std::vector<double> energy;                // stored elastic energy density (J/m³ of V₀)
   std::vector<double> dissipation;           // accumulated plastic work density (J/m³ of V₀)
   std::vector<double> damage;                // accumulated ∫ dε̄_p/ε_f (rule "accumulated")

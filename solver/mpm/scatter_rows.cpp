@@ -2,15 +2,13 @@
 
 #include <immintrin.h>
 
+#include "solver/mpm/parallel.hpp"
+
 namespace pdmpm::mpm {
 
 namespace {
 
-// The particle loops run in block order, where runs of consecutive indices are a
-// lattice row long: each iteration asks for the arrays of the particle 8 positions on.
-constexpr Index kRowsAhead = 32;
-
-void prefetch_particle(const ScatterSource2& s, ScatterFields what, Index p) {
+void prefetch_scattered(const ScatterSource2& s, ScatterFields what, Index p) {
   __builtin_prefetch(s.mass + p);
   __builtin_prefetch(s.velocity + p);
   if (what.forces) {
@@ -23,7 +21,7 @@ void scatter_rows_scalar(const ScatterSource2& s, const ScatterTarget2& g, Scatt
                          Index k_end) {
   const IVec<2> stride(1, g.row_stride);
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kRowsAhead < k_end) prefetch_particle(s, what, s.order[k + kRowsAhead]);
+    if (k + kPrefetchAhead < k_end) prefetch_scattered(s, what, s.order[k + kPrefetchAhead]);
     const Index p = s.order[k];
     const double m = s.mass[p];
     const Vec<2> mv = m * s.velocity[p];
@@ -46,7 +44,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
                                                             ScatterFields what, Index k_begin, Index k_end) {
   const __mmask8 three = 0x07, six = 0x3f;
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kRowsAhead < k_end) prefetch_particle(s, what, s.order[k + kRowsAhead]);
+    if (k + kPrefetchAhead < k_end) prefetch_scattered(s, what, s.order[k + kPrefetchAhead]);
     const Index p = s.order[k];
     const Stencil<2>& st = s.stencil[k];
     const double m = s.mass[p];

@@ -51,12 +51,6 @@ class PhaseClock {
   double last_ = omp_get_wtime();
 };
 
-// The particle loops run in the schedule's order: cell block by cell block, so
-// consecutive particles are runs of a lattice row (8 in 2D at two sites per cell),
-// too short for the hardware prefetcher, and each loop body is long enough that the
-// next particle's loads are not issued early. Each loop asks for the arrays of the
-// particle kAhead positions on.
-constexpr Index kAhead = 8;
 
 template <class T>
 void prefetch(const std::vector<T>& a, Index p) {
@@ -65,10 +59,10 @@ void prefetch(const std::vector<T>& a, Index p) {
   if constexpr (sizeof(T) > 8) __builtin_prefetch(first + sizeof(T) - 1);
 }
 
-// The arrays' entries of the particle kAhead positions after position k of `order`.
+// The arrays' entries of the particle kPrefetchAhead positions after position k of `order`.
 template <class... Arrays>
 void prefetch_ahead(const std::vector<Index>& order, Index k, const Arrays&... arrays) {
-  if (k + kAhead < static_cast<Index>(order.size())) (prefetch(arrays, order[k + kAhead]), ...);
+  if (k + kPrefetchAhead < static_cast<Index>(order.size())) (prefetch(arrays, order[k + kPrefetchAhead]), ...);
 }
 
 }  // namespace
@@ -373,13 +367,7 @@ void Simulation<D>::grid_velocity_from_momentum(std::vector<Vec<D>>& v) const {
 template <int D>
 void Simulation<D>::update_nonlocal() {
   const Index n = particles_.size();
-  if (!settings_.nonlocal.enabled) {
-    const Index na = static_cast<Index>(active_.size());
-#pragma omp parallel for schedule(static) if (na >= kParallelMin)
-    for (Index k = 0; k < na; ++k)
-      state_.eq_plastic_hardening[active_[k]] = state_.history[active_[k]].eq_plastic_strain;
-    return;
-  }
+  if (!settings_.nonlocal.enabled) return;  // ε̂_p = ε̄_p (hardening_offset is zero)
   std::vector<Vec<D>> x(n, Vec<D>::Zero());
   std::vector<double> a(n, 0.0), avg;
   std::vector<std::uint8_t> use(n, 0);
@@ -462,7 +450,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
-    prefetch_ahead(order, k, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
+    prefetch_ahead(order, k, state_.history, state_.kirchhoff, state_.J,
                    state_.out_of_plane_strain, state_.energy, state_.dissipation);
     if (!state_.failed[p] && !apply_law(p, log_strain ? &polar_[k] : nullptr)) bad = std::min(bad, p);
     keep_tau_in_order(k, p);  // a failed particle's: zero, it carries no stress
@@ -487,7 +475,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
     for (Index gi = 0; gi < groups; ++gi) {
       const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
       for (Index k = k0; k < k0 + n; ++k)  // the next group's
-        prefetch_ahead(order, k, state_.F, state_.history, state_.eq_plastic_hardening, state_.kirchhoff, state_.J,
+        prefetch_ahead(order, k, state_.F, state_.history, state_.kirchhoff, state_.J,
                        state_.out_of_plane_strain, state_.energy, state_.dissipation, state_.failed);
       DeformationLanes def;
       for (int l = 0; l < kLawLanes; ++l) {
@@ -513,7 +501,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         lanes.l00[l] = polar.l00[l], lanes.l01[l] = polar.l01[l], lanes.l11[l] = polar.l11[l];
         lanes.c[l] = polar.c[l], lanes.s[l] = polar.s[l];
         set_plastic_lane(lanes, l, hist.plastic_strain, elastic_only);
-        lanes.alpha[l] = hist.eq_plastic_strain + (state_.eq_plastic_hardening[p] - hist.eq_plastic_strain);
+        lanes.alpha[l] = hist.eq_plastic_strain + hardening_offset(p, hist.eq_plastic_strain);
       }
       const unsigned law_by_point = plane_stress_lanes(law, lanes);
       for (int l = 0; l < n; ++l) {
@@ -544,7 +532,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         r.out_of_plane_strain = lanes.out_of_plane[l];
         r.energy = lanes.energy[l];
         r.dissipation = lanes.yielded >> l & 1u ? lanes.dissipation[l] : 0.0;
-        store_law_result(p, r, alpha_before, state_.eq_plastic_hardening[p] - alpha_before);
+        store_law_result(p, r, alpha_before, hardening_offset(p, alpha_before));
       }
       for (int l = 0; l < n; ++l) keep_tau_in_order(k0 + l, order[k0 + l]);
     }
@@ -559,7 +547,7 @@ template <int D>
 bool Simulation<D>::apply_law(Index p, const PolarLog<D>* polar) {
   PointHistory& hist = state_.history[p];
   const double alpha_before = hist.eq_plastic_strain;
-  const double offset = state_.eq_plastic_hardening[p] - alpha_before;
+  const double offset = hardening_offset(p, alpha_before);
   StressResult r;
   try {
     r = polar ? constitutive_.update(*polar, hist, offset) : constitutive_.update(state_.F[p], hist, offset);
@@ -739,13 +727,18 @@ void Simulation<D>::prepare_step(double t) {
   sync_particles();
   failed_this_step_.assign(particles_.size(), 0);
   compute_stencils();
-  // External forces (time tⁿ).
-  ext_force_.assign(particles_.size(), Vec<D>::Zero());
+  // External forces (time tⁿ); only the active particles' entries are read.
+  ext_force_.resize(particles_.size());
   const Index na = static_cast<Index>(active_.size());
+  bool any = false;
   // (serial with a scene-expression body force: its evaluator is not known to be re-entrant)
   const bool parallel = na >= kParallelMin && !settings_.body_acceleration;
-#pragma omp parallel for schedule(static) if (parallel)
-  for (Index k = 0; k < na; ++k) ext_force_[active_[k]] = external_force(active_[k], t);
+#pragma omp parallel for schedule(static) reduction(|| : any) if (parallel)
+  for (Index k = 0; k < na; ++k) {
+    const Vec<D> f = external_force(active_[k], t);
+    ext_force_[active_[k]] = f;
+    any = any || !f.isZero(0.0);
+  }
   for (std::size_t i = 0; i < settings_.tractions.size(); ++i) {
     const Traction<D>& tr = settings_.tractions[i];
     const double r = ramp(t, tr.ramp_time);
@@ -753,11 +746,9 @@ void Simulation<D>::prepare_step(double t) {
       if (is_mpm(particles_.kind[p])) {
         const Vec<D> value = tr.traction_field ? tr.traction_field(particles_.x0[p], t) : tr.traction;
         ext_force_[p] += r * value * particles_.volume[p] / particles_.lattice.spacing;
+        any = any || !ext_force_[p].isZero(0.0);
       }
   }
-  bool any = false;
-#pragma omp parallel for schedule(static) reduction(|| : any) if (na >= kParallelMin)
-  for (Index k = 0; k < na; ++k) any = any || !ext_force_[active_[k]].isZero(0.0);
   any_external_force_ = any;
   update_nonlocal();
 }
@@ -878,7 +869,7 @@ void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
   tau_generation_ = std::numeric_limits<std::uint64_t>::max();  // a stress set outside the update
   state_.F[p] = F;
   PointHistory h = state_.history[p];
-  const StressResult r = constitutive_.update(F, h, state_.eq_plastic_hardening[p] - h.eq_plastic_strain);
+  const StressResult r = constitutive_.update(F, h, hardening_offset(p, h.eq_plastic_strain));
   state_.history[p] = h;
   state_.kirchhoff[p] = r.kirchhoff;
   state_.J[p] = r.J;

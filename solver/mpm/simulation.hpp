@@ -149,6 +149,11 @@ class Simulation {
   bool apply_law(Index p, const PolarLog<D>* polar);
   void store_law_result(Index p, const StressResult& r, double alpha_before, double offset);
   void update_nonlocal();
+  // ε̂_p − ε̄_p of particle p with ε̄_p = eq_plastic: the non-local correction of the
+  // hardening variable, zero for a local model (its ε̂_p is not kept up to date).
+  double hardening_offset(Index p, double eq_plastic) const {
+    return settings_.nonlocal.enabled ? state_.eq_plastic_hardening[p] - eq_plastic : 0.0;
+  }
   Vec<D> external_force(Index p, double t) const;
   // stencil_ (polar_) of the active particles in schedule order; bad = the lowest particle
   // whose stencil leaves the grid (whose F has inverted), left as it is if none.
