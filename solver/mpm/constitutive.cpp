@@ -100,13 +100,14 @@ StressResult Constitutive<D>::update(const PolarLog<D>& pl, PointHistory& histor
 template <int D>
 std::optional<PlaneStressLaw> Constitutive<D>::plane_stress_law() const {
   if (D != 2 || setting_ != core::Setting::plane_stress || !log_strain()) return std::nullopt;
-  if (m_.model == MaterialModel::linear_elastic)  // J2 that never yields
-    return PlaneStressLaw{j2_.plane_stress_modulus, j2_.nu, j2_.thickness_strain,
-                          std::numeric_limits<double>::infinity(), 0.0, j2_.E, j2_.G, j2_.c1};
-  if (m_.model == MaterialModel::j2)
-    return PlaneStressLaw{j2_.plane_stress_modulus, j2_.nu,   j2_.thickness_strain, j2_.yield_stress,
-                          j2_.H,                    j2_.E,    j2_.G,                j2_.c1};
-  return std::nullopt;
+  if (m_.model != MaterialModel::linear_elastic && m_.model != MaterialModel::j2) return std::nullopt;
+  PlaneStressLaw law{
+      j2_.plane_stress_modulus, j2_.nu, j2_.thickness_strain, j2_.yield_stress, j2_.H, j2_.E, j2_.G, j2_.c1};
+  if (m_.model == MaterialModel::linear_elastic) {  // J2 that never yields
+    law.yield_stress = std::numeric_limits<double>::infinity();
+    law.hardening = 0.0;
+  }
+  return law;
 }
 
 template class Constitutive<1>;

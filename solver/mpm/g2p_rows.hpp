@@ -16,9 +16,9 @@
 namespace pdmpm::mpm {
 
 struct G2PArrays2 {
-  const Index* order = nullptr;         // particle at schedule position k
-  const Stencil<2>* stencil = nullptr;  // stencil[k], in schedule order
-  const double* mass = nullptr;         // of the particles (for the remap)
+  const Index* order = nullptr;               // particle at schedule position k
+  const Stencil<2>* stencil = nullptr;        // stencil[k], in schedule order
+  const double* mass = nullptr;               // of the particles (for the remap)
   const Vec<2>* grid_velocity = nullptr;      // vⁿ of the nodes
   const Vec<2>* grid_velocity_new = nullptr;  // vⁿ⁺¹ of the nodes
   Vec<2>* velocity = nullptr;                 // of the particles, updated

@@ -17,12 +17,9 @@ const double kSqrt2over3 = std::sqrt(2.0 / 3.0);  // as j2_plasticity.cpp has it
 // whose step leaves the bracket while hi is still unknown joins `scalar` (the scalar
 // code would now search for hi). Returns Δγ per lane.
 template <int W>
-__attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter(const PlaneStressLaw& law,
-                                                                               typename Lanes<W>::m run,
-                                                                               typename Lanes<W>::d s1,
-                                                                               typename Lanes<W>::d s2,
-                                                                               typename Lanes<W>::d alpha0,
-                                                                               typename Lanes<W>::m& scalar) {
+__attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter(
+    const PlaneStressLaw& law, typename Lanes<W>::m run, typename Lanes<W>::d s1, typename Lanes<W>::d s2,
+    typename Lanes<W>::d alpha0, typename Lanes<W>::m& scalar) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;

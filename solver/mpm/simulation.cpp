@@ -51,7 +51,6 @@ class PhaseClock {
   double last_ = omp_get_wtime();
 };
 
-
 template <class T>
 void prefetch(const std::vector<T>& a, Index p) {
   const char* first = reinterpret_cast<const char*>(a.data() + p);
@@ -327,13 +326,14 @@ void Simulation<D>::scatter(Scatter what) {
   if constexpr (D == 2) {
     if (rows()) {  // a stencil row per instruction (scatter_rows.hpp)
       if (what.forces && tau_generation_ != schedule_.generation()) refresh_tau_in_order();
-      const ScatterSource2 source{order.data(),       stencil_.data(),          state_.mass.data(),
+      const ScatterSource2 source{order.data(),        stencil_.data(),          state_.mass.data(),
                                   particles_.v.data(), particles_.volume.data(), tau_in_order_.data(),
                                   ext_force_.data()};
       const ScatterTarget2 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride[1]};
       const ScatterFields fields{what.mass, what.momentum, what.forces, external};
-      schedule_.for_each_block([&](Index k_begin, Index k_end) { scatter_rows(source, target, fields, k_begin, k_end); });
+      schedule_.for_each_block(
+          [&](Index k_begin, Index k_end) { scatter_rows(source, target, fields, k_begin, k_end); });
       fold_grid(what);
       return;
     }
@@ -450,8 +450,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
     const Index p = order[k];
-    prefetch_ahead(order, k, state_.history, state_.kirchhoff, state_.J,
-                   state_.out_of_plane_strain, state_.energy, state_.dissipation);
+    prefetch_ahead(order, k, state_.history, state_.kirchhoff, state_.J, state_.out_of_plane_strain, state_.energy,
+                   state_.dissipation);
     if (!state_.failed[p] && !apply_law(p, log_strain ? &polar_[k] : nullptr)) bad = std::min(bad, p);
     keep_tau_in_order(k, p);  // a failed particle's: zero, it carries no stress
   }
@@ -475,8 +475,8 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
     for (Index gi = 0; gi < groups; ++gi) {
       const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
       for (Index k = k0; k < k0 + n; ++k)  // the next group's
-        prefetch_ahead(order, k, state_.F, state_.history, state_.kirchhoff, state_.J,
-                       state_.out_of_plane_strain, state_.energy, state_.dissipation, state_.failed);
+        prefetch_ahead(order, k, state_.F, state_.history, state_.kirchhoff, state_.J, state_.out_of_plane_strain,
+                       state_.energy, state_.dissipation, state_.failed);
       DeformationLanes def;
       for (int l = 0; l < kLawLanes; ++l) {
         const Index k = k0 + std::min<Index>(l, n - 1);
@@ -837,7 +837,7 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   auto move_run = [&](Index k_begin, Index k_end) {
     if constexpr (D == 2) {
       if (K_ == 3) {
-        const G2PArrays2 arrays{order.data(),          stencil_.data(),      state_.mass.data(),
+        const G2PArrays2 arrays{order.data(),          stencil_.data(),           state_.mass.data(),
                                 grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
                                 particles_.u.data(),   grid_.momentum.data(),     stride[1]};
         if (!g2p_rows(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);

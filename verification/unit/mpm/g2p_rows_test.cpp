@@ -53,8 +53,9 @@ struct Result {
 
 Result run(G2PRowsFunction f, const Case& c, int nodes, G2PParameters q) {
   Result r{c.velocity, c.displacement, std::vector<Vec<2>>(nodes * nodes, Vec<2>::Zero())};
-  const G2PArrays2 a{c.order.data(),   c.stencil.data(),   c.mass.data(),       c.grid_v.data(), c.grid_v_new.data(),
-                     r.velocity.data(), r.displacement.data(), r.momentum.data(), nodes};
+  const G2PArrays2 a{c.order.data(),        c.stencil.data(),    c.mass.data(),
+                     c.grid_v.data(),       c.grid_v_new.data(), r.velocity.data(),
+                     r.displacement.data(), r.momentum.data(),   nodes};
   const Index n = static_cast<Index>(c.order.size());
   r.finite = f(a, q, 0, n / 3) & f(a, q, n / 3, n);  // in two runs, as blocks run
   return r;

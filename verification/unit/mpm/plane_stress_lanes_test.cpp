@@ -88,8 +88,7 @@ Tally compare(const Constitutive<2>& law, const std::vector<Point>& points) {
         bool same = same_bits(r.kirchhoff(0, 0), lanes.k00[l]) && same_bits(r.kirchhoff(0, 1), lanes.k01[l]) &&
             same_bits(r.kirchhoff(1, 0), lanes.k10[l]) && same_bits(r.kirchhoff(1, 1), lanes.k11[l]) &&
             same_bits(r.J, lanes.J[l]) && same_bits(r.out_of_plane_strain, lanes.out_of_plane[l]) &&
-            same_bits(r.energy, lanes.energy[l]) && same_bits(r.dissipation, dissipation) &&
-            same_history(h, lane_h);
+            same_bits(r.energy, lanes.energy[l]) && same_bits(r.dissipation, dissipation) && same_history(h, lane_h);
         for (int i = 0; i < 3; ++i) same = same && r.kirchhoff(i, 2) == 0.0 && r.kirchhoff(2, i) == 0.0;
         t.differing += !same;
       }

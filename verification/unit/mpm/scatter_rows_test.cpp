@@ -62,8 +62,8 @@ bool same_bits(const std::vector<Vec<2>>& a, const std::vector<Vec<2>>& b) {
 TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
   const int nodes = 12, n = 400;  // ≈ 4 particles per cell: nodes sum up to ~36 contributions
   const Particles s = random_particles(n, nodes, 3);
-  const ScatterSource2 source{s.order.data(),      s.stencil.data(), s.mass.data(),     s.velocity.data(),
-                              s.volume.data(), s.tau.data(), s.external.data()};
+  const ScatterSource2 source{s.order.data(),  s.stencil.data(), s.mass.data(),    s.velocity.data(),
+                              s.volume.data(), s.tau.data(),     s.external.data()};
   const auto variants = scatter_rows_variants();
   ASSERT_GE(variants.size(), 1u);
   for (int bits = 1; bits < 16; ++bits) {
