@@ -13,9 +13,12 @@
 
 #include "solver/core/types.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::core {
 namespace {
+
+using test::same_bits;
 
 struct Sample {
   std::vector<double> values{1.0, -0.0, std::numeric_limits<double>::quiet_NaN(), 1e-310, -1e308};
@@ -36,10 +39,6 @@ struct Sample {
     a.sync("text", text);
   }
 };
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
 
 TEST(StateArchive, RestoresWhatWasSavedBitForBitThroughAFile) {
   test::ScratchDir dir("state_archive");

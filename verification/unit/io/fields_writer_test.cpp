@@ -17,9 +17,12 @@
 #include "solver/core/error.hpp"
 #include "verification/support/scratch_dir.hpp"
 #include "verification/support/output_files.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::io {
 namespace {
+
+using test::same_bits;
 
 namespace fs = std::filesystem;
 
@@ -89,10 +92,6 @@ T read_attribute(hid_t file, const std::string& object, const std::string& name,
   EXPECT_GE(H5Aread(attr, memory_type, &value), 0);
   H5Aclose(attr);
   return value;
-}
-
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
 }
 
 // ---------------------------------------------------------------------------

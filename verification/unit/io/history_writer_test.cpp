@@ -13,12 +13,14 @@
 
 #include "solver/core/error.hpp"
 #include "verification/support/scratch_dir.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::io {
 namespace {
 
-namespace fs = std::filesystem;
+using test::same_bits;
 
+namespace fs = std::filesystem;
 
 std::vector<std::string> read_lines(const fs::path& p) {
   std::ifstream in(p);
@@ -33,8 +35,6 @@ std::vector<std::string> split(const std::string& line) {
   for (std::string cell; std::getline(ss, cell, ',');) out.push_back(cell);
   return out;
 }
-
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 TEST(HistoryWriter, RoundTripsEveryDoubleExactly) {
   test::ScratchDir dir("history_roundtrip");

@@ -40,7 +40,8 @@ void check_objective(MaterialModel model, core::Setting setting, double strain) 
     const double E = law.material().elastic.E;
     EXPECT_LT((b.kirchhoff - Q3 * a.kirchhoff * Q3.transpose()).norm(), 1e-11 * a.kirchhoff.norm() + 1e-14 * E)
         << name(model) << " " << name(setting);
-    EXPECT_NEAR(a.energy, b.energy, 1e-11 * std::abs(a.energy) + 1e-13 * E * strain) << name(model) << " " << name(setting) << " " << strain;
+    EXPECT_NEAR(a.energy, b.energy, 1e-11 * std::abs(a.energy) + 1e-13 * E * strain)
+        << name(model) << " " << name(setting) << " " << strain;
     EXPECT_NEAR(h1.eq_plastic_strain, h2.eq_plastic_strain, 1e-12);
   }
 }
@@ -68,7 +69,8 @@ TEST(Constitutive, SmallStrainLimitIsHooke) {
   const Mat<3> hooke = m.lame() * eps.trace() * Mat<3>::Identity() + 2 * m.shear() * eps;
   for (auto model : {MaterialModel::linear_elastic, MaterialModel::neo_hookean}) {
     PointHistory hist;
-    const StressResult r = Constitutive<3>({model, {200e9, 0.3, 7800}}, core::Setting::solid3d).update(Mat<3>::Identity() + H, hist);
+    const StressResult r =
+        Constitutive<3>({model, {200e9, 0.3, 7800}}, core::Setting::solid3d).update(Mat<3>::Identity() + H, hist);
     EXPECT_LT((r.kirchhoff - hooke).norm(), 1e-5 * hooke.norm()) << name(model);
   }
   // Plane stress: σ33 = 0 and ε33 = −ν/(1−ν)(ε11 + ε22).
@@ -120,7 +122,8 @@ TEST(Kinematics, PolarLogRecoversRotationAndStretch) {
     const PolarLog<2> p = polar_log<2>(F);
     EXPECT_LT((p.R - rotation<2>(angle)).norm(), 1e-14);
     Eigen::SelfAdjointEigenSolver<Mat<2>> e(U);
-    const Mat<2> lnU = e.eigenvectors() * e.eigenvalues().array().log().matrix().asDiagonal() * e.eigenvectors().transpose();
+    const Mat<2> lnU =
+        e.eigenvectors() * e.eigenvalues().array().log().matrix().asDiagonal() * e.eigenvectors().transpose();
     EXPECT_LT((p.log_U - lnU).norm(), 1e-14);
   }
   Mat<3> U3;

@@ -10,11 +10,12 @@
 #include <random>
 
 #include "solver/mpm/kinematics.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::mpm {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 TEST(DeformationLanes, EqualTheScalarCayleyUpdateBitForBit) {
   std::mt19937 rng(11);

@@ -3,6 +3,7 @@
 // stencils from the code that makes them, random grid velocities, FLIP, PIC and a
 // blend, with and without the remap; and both report a non-finite grid velocity.
 #include "solver/mpm/g2p_rows.hpp"
+#include "verification/support/same_bits.hpp"
 
 #include <gtest/gtest.h>
 
@@ -14,17 +15,19 @@
 namespace pdmpm::mpm {
 namespace {
 
-struct Case {
+using test::same_bits;
+
+struct G2PCase {
   std::vector<Index> order;
   std::vector<Stencil<2>> stencil;
   std::vector<double> mass;
   std::vector<Vec<2>> velocity, displacement, grid_v, grid_v_new;
 };
 
-Case random_case(int n, int nodes, unsigned seed) {
+G2PCase random_g2p_case(int n, int nodes, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, nodes - 3.0);
-  Case c;
+  G2PCase c;
   for (int i = 0; i < n; ++i) {
     c.order.push_back(i);
     const Vec<2> x(inside(rng), inside(rng));
@@ -41,18 +44,13 @@ Case random_case(int n, int nodes, unsigned seed) {
   return c;
 }
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
-
-struct Result {
+struct G2PResult {
   std::vector<Vec<2>> velocity, displacement, momentum;
   bool finite = true;
 };
 
-Result run(G2PRowsFunction f, const Case& c, int nodes, G2PParameters q) {
-  Result r{c.velocity, c.displacement, std::vector<Vec<2>>(nodes * nodes, Vec<2>::Zero())};
+G2PResult run_g2p(G2PRowsFunction f, const G2PCase& c, int nodes, G2PParameters q) {
+  G2PResult r{c.velocity, c.displacement, std::vector<Vec<2>>(nodes * nodes, Vec<2>::Zero())};
   const G2PArrays2 a{c.order.data(),        c.stencil.data(),    c.mass.data(),
                      c.grid_v.data(),       c.grid_v_new.data(), r.velocity.data(),
                      r.displacement.data(), r.momentum.data(),   nodes};
@@ -63,16 +61,16 @@ Result run(G2PRowsFunction f, const Case& c, int nodes, G2PParameters q) {
 
 TEST(G2PRows, EveryVersionGivesTheScalarBits) {
   const int nodes = 12, n = 400;
-  const Case c = random_case(n, nodes, 5);
+  const G2PCase c = random_g2p_case(n, nodes, 5);
   const auto variants = g2p_rows_variants();
   for (const double flip : {1.0, 0.0, 0.95})
     for (const bool remap : {false, true}) {
       const G2PParameters q{flip, 1e-8, remap};
-      const Result reference = run(variants.front().function, c, nodes, q);
+      const G2PResult reference = run_g2p(variants.front().function, c, nodes, q);
       EXPECT_TRUE(reference.finite);
       EXPECT_FALSE(same_bits(reference.velocity, c.velocity)) << "the pass moved nothing";
       for (const auto& v : variants) {
-        const Result r = run(v.function, c, nodes, q);
+        const G2PResult r = run_g2p(v.function, c, nodes, q);
         EXPECT_TRUE(same_bits(r.velocity, reference.velocity)) << v.name << ", flip " << flip << ", remap " << remap;
         EXPECT_TRUE(same_bits(r.displacement, reference.displacement)) << v.name << ", flip " << flip;
         EXPECT_TRUE(same_bits(r.momentum, reference.momentum)) << v.name << ", flip " << flip << ", remap " << remap;
@@ -83,11 +81,11 @@ TEST(G2PRows, EveryVersionGivesTheScalarBits) {
 
 TEST(G2PRows, EveryVersionReportsANonFiniteVelocity) {
   const int nodes = 12;
-  Case c = random_case(100, nodes, 6);
+  G2PCase c = random_g2p_case(100, nodes, 6);
   const Stencil<2>& st = c.stencil[17];
   c.grid_v_new[(st.first[0] + 1) + (st.first[1] + 1) * nodes][1] = std::numeric_limits<double>::infinity();
   for (const auto& v : g2p_rows_variants())
-    EXPECT_FALSE(run(v.function, c, nodes, {0.95, 1e-8, true}).finite) << v.name;
+    EXPECT_FALSE(run_g2p(v.function, c, nodes, {0.95, 1e-8, true}).finite) << v.name;
 }
 
 }  // namespace

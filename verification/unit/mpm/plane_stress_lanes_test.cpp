@@ -14,11 +14,12 @@
 
 #include "solver/mpm/constitutive.hpp"
 #include "solver/mpm/kinematics.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::mpm {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
 struct Point {
   PolarLog<2> polar;
@@ -26,7 +27,7 @@ struct Point {
   double offset = 0.0;  // non-local hardening offset ε̂_p − ε̄_p
 };
 
-struct Tally {
+struct LawTally {
   int differing = 0, flagged = 0, yielded = 0, yield_mismatch = 0;
 };
 
@@ -47,8 +48,8 @@ Material plate_steel(MaterialModel model) {
 }
 
 // Runs every instruction set's version over the points, eight at a time.
-Tally compare(const Constitutive<2>& law, const std::vector<Point>& points) {
-  Tally t;
+LawTally compare(const Constitutive<2>& law, const std::vector<Point>& points) {
+  LawTally t;
   const PlaneStressLaw constants = *law.plane_stress_law();
   const bool elastic_only = law.material().model == MaterialModel::linear_elastic;
   for (const auto& variant : plane_stress_lanes_variants())
@@ -125,7 +126,7 @@ TEST(PlaneStressLanes, EqualTheJ2LawBitForBitOnBothPaths) {
   // strains, where Newton takes most iterations.
   for (const double strain : {1e-6, 1e-3, 3e-3, 0.3})
     for (const double plastic : {0.0, 1e-3}) {
-      const Tally t = compare(law, points(strain, plastic, 4000, 7));
+      const LawTally t = compare(law, points(strain, plastic, 4000, 7));
       EXPECT_EQ(t.differing, 0) << "strain " << strain << ", plastic " << plastic;
       EXPECT_EQ(t.yield_mismatch, 0) << "strain " << strain << ", plastic " << plastic;
       // Random strains start Newton where f is convex (Simo & Hughes 1998 §3.4.2): no
@@ -144,7 +145,7 @@ TEST(PlaneStressLanes, EqualLinearElasticityBitForBitAndNeverFlagIt) {
   std::vector<Point> pts = points(1e-2, 1e-3, 4000, 8);  // histories it must ignore
   pts[5].polar.log_U.setZero();                          // a zero strain: signed zeros through ε₃₃ and J
   pts[6].polar.log_U << -0.0, -0.0, -0.0, -0.0;
-  const Tally t = compare(law, pts);
+  const LawTally t = compare(law, pts);
   EXPECT_EQ(t.differing, 0);
   EXPECT_EQ(t.flagged, 0);
 }

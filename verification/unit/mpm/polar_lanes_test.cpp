@@ -12,19 +12,20 @@
 
 #include "solver/core/error.hpp"
 #include "solver/mpm/kinematics.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::mpm {
 namespace {
 
-bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+using test::same_bits;
 
-struct Tally {
+struct PolarTally {
   int differing = 0, flagged = 0, inverted_unflagged = 0;
 };
 
 // Runs every instruction set's version over the gradients, eight at a time.
-Tally compare(const std::vector<Mat<2>>& F) {
-  Tally t;
+PolarTally compare(const std::vector<Mat<2>>& F) {
+  PolarTally t;
   for (const auto& variant : polar_lanes_variants())
     for (std::size_t i0 = 0; i0 + kPolarLanes <= F.size(); i0 += kPolarLanes) {
       PolarLanes lanes;
@@ -75,7 +76,7 @@ std::vector<Mat<2>> gradients(double strain, int n, unsigned seed) {
 
 TEST(PolarLanes, EqualPolarLogBitForBitForMetalStrains) {
   for (const double strain : {1e-6, 1e-4, 1e-2}) {
-    const Tally t = compare(gradients(strain, 4000, 5));
+    const PolarTally t = compare(gradients(strain, 4000, 5));
     EXPECT_EQ(t.differing, 0) << "strain " << strain;
     EXPECT_EQ(t.flagged, 0) << "strain " << strain;  // r/m stays far below 0.1
   }
@@ -85,7 +86,7 @@ TEST(PolarLanes, FlagLargeStrainsAndInvertedGradientsOnly) {
   std::vector<Mat<2>> F = gradients(0.4, 4000, 6);  // some beyond r/m = 0.1, some inverted
   F[3] << -1.0, 0.0, 0.0, 1.0;                      // a reflection: det F < 0
   F[9] << std::nan(""), 0.0, 0.0, 1.0;
-  const Tally t = compare(F);
+  const PolarTally t = compare(F);
   EXPECT_EQ(t.differing, 0);
   EXPECT_EQ(t.inverted_unflagged, 0);
   EXPECT_GT(t.flagged, 0);

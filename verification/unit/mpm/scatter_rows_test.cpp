@@ -3,6 +3,7 @@
 // many contributions in order, uGIMP stencils from the code that makes them, random
 // stresses, velocities and external forces, each combination of the fields.
 #include "solver/mpm/scatter_rows.hpp"
+#include "verification/support/same_bits.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +14,9 @@
 namespace pdmpm::mpm {
 namespace {
 
-struct Particles {
+using test::same_bits;
+
+struct ScatterParticles {
   std::vector<Index> order;
   std::vector<Stencil<2>> stencil;
   std::vector<double> mass, volume;
@@ -22,10 +25,10 @@ struct Particles {
 };
 
 // n particles in a grid of `nodes` × `nodes` (h = 1), away from its edges, in a shuffled order.
-Particles random_particles(int n, int nodes, unsigned seed) {
+ScatterParticles random_scatter_particles(int n, int nodes, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, nodes - 3.0);
-  Particles s;
+  ScatterParticles s;
   for (int i = 0; i < n; ++i) {
     s.order.push_back(i);
     const Vec<2> x(inside(rng), inside(rng));
@@ -42,26 +45,19 @@ Particles random_particles(int n, int nodes, unsigned seed) {
   return s;
 }
 
-struct Grid2 {
+struct ScatterGrid {
   std::vector<double> mass;
   std::vector<Vec<2>> momentum, force_internal, force_external;
-  explicit Grid2(int nodes)
+  explicit ScatterGrid(int nodes)
       : mass(nodes * nodes, 0.0),
         momentum(nodes * nodes, Vec<2>::Zero()),
         force_internal(nodes * nodes, Vec<2>::Zero()),
         force_external(nodes * nodes, Vec<2>::Zero()) {}
 };
 
-bool same_bits(const std::vector<double>& a, const std::vector<double>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0;
-}
-bool same_bits(const std::vector<Vec<2>>& a, const std::vector<Vec<2>>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec<2>)) == 0;
-}
-
 TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
   const int nodes = 12, n = 400;  // ≈ 4 particles per cell: nodes sum up to ~36 contributions
-  const Particles s = random_particles(n, nodes, 3);
+  const ScatterParticles s = random_scatter_particles(n, nodes, 3);
   const ScatterSource2 source{s.order.data(),  s.stencil.data(), s.mass.data(),    s.velocity.data(),
                               s.volume.data(), s.tau.data(),     s.external.data()};
   const auto variants = scatter_rows_variants();
@@ -69,7 +65,7 @@ TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
   for (int bits = 1; bits < 16; ++bits) {
     const ScatterFields what{(bits & 1) != 0, (bits & 2) != 0, (bits & 4) != 0, (bits & 8) != 0};
     if (!what.mass && !what.momentum && !what.forces) continue;  // the external force goes with the forces
-    Grid2 reference(nodes);
+    ScatterGrid reference(nodes);
     ScatterTarget2 target{reference.mass.data(), reference.momentum.data(), reference.force_internal.data(),
                           reference.force_external.data(), nodes};
     variants.front().function(source, target, what, 0, n);
@@ -78,7 +74,7 @@ TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
               false)
         << "fields " << bits << ": the scatter reached no node";
     for (const auto& v : variants) {
-      Grid2 grid(nodes);
+      ScatterGrid grid(nodes);
       target = {grid.mass.data(), grid.momentum.data(), grid.force_internal.data(), grid.force_external.data(), nodes};
       v.function(source, target, what, 0, n / 3);  // in two runs, as blocks run
       v.function(source, target, what, n / 3, n);

@@ -11,14 +11,12 @@
 
 #include "solver/pd/hpd.hpp"
 #include "verification/support/pd_fixtures.hpp"
+#include "verification/support/same_bits.hpp"
 
 namespace pdmpm::pd {
 namespace {
 
-template <class T>
-bool same_bits(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
-}
+using test::same_bits;
 
 template <int D>
 void expect_same(const SubHorizon<D>& a, const SubHorizon<D>& b, const std::string& where) {
