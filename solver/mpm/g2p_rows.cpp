@@ -62,12 +62,13 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
     const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
     const Index base = st.first[0] + st.first[1] * a.row_stride;
     __m128d v_pic = _mm_setzero_pd(), dv = _mm_setzero_pd();
+    __m512d w2[3];  // S of the row's node i in lanes 2i, 2i + 1; the remap uses them again
     for (int j = 0; j < 3; ++j) {
       const Index row = base + j * a.row_stride;
-      const __m512d w2 = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
+      w2[j] = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
       const __m512d vn = _mm512_maskz_loadu_pd(six, a.grid_velocity_new[row].data());
       const __m512d vo = _mm512_maskz_loadu_pd(six, a.grid_velocity[row].data());
-      const __m512d c_pic = _mm512_mul_pd(w2, vn), c_dv = _mm512_mul_pd(w2, _mm512_sub_pd(vn, vo));
+      const __m512d c_pic = _mm512_mul_pd(w2[j], vn), c_dv = _mm512_mul_pd(w2[j], _mm512_sub_pd(vn, vo));
       for (int i = 0; i < 3; ++i) {  // node by node, as the scalar sum
         v_pic = _mm_add_pd(v_pic, node_pair(c_pic, i));
         dv = _mm_add_pd(dv, node_pair(c_dv, i));
@@ -87,10 +88,8 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
       const double m = a.mass[p], mvx = m * v[0], mvy = m * v[1];
       const __m512d mv3 = _mm512_set_pd(0.0, 0.0, mvy, mvx, mvy, mvx, mvy, mvx);  // m v per node
       for (int j = 0; j < 3; ++j) {
-        const Index row = base + j * a.row_stride;
-        const __m512d w2 = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
-        double* at = a.grid_momentum[row].data();
-        _mm512_mask_storeu_pd(at, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, at), _mm512_mul_pd(w2, mv3)));
+        double* at = a.grid_momentum[base + j * a.row_stride].data();
+        _mm512_mask_storeu_pd(at, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, at), _mm512_mul_pd(w2[j], mv3)));
       }
     }
   }

@@ -23,8 +23,8 @@ struct Lanes {
     std::memcpy(&v, p, sizeof v);
     return v;
   }
-  // Per lane by the library's correctly rounded square root (a vector square root
-  // would need the instruction set's intrinsics in this shared header).
+  // Per lane by the correctly rounded square root; the lane files compile with
+  // -fno-math-errno, so the loop becomes the vector instruction (same values).
   __attribute__((always_inline)) static d sqrt(d x) {
     double v[W];
     std::memcpy(v, &x, sizeof x);

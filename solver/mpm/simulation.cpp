@@ -425,12 +425,14 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
                       "(stable step estimate {} s)",
                       steps_, bad, dt, stable_dt()));
   };
-  tau_in_order_.resize(schedule_.order().size());
-  tau_generation_ = schedule_.generation();
+  // tau_in_order_ is valid once every particle's stress is in it.
+  tau_generation_ = std::numeric_limits<std::uint64_t>::max();
+  if (rows()) tau_in_order_.resize(schedule_.order().size());
   if constexpr (D == 2) {
     if (const std::optional<PlaneStressLaw> law = constitutive_.plane_stress_law()) {
       update_stress_in_lanes(vg, dt, *law, bad);
       throw_if_bad();
+      tau_generation_ = schedule_.generation();
       return;
     }
   }
@@ -456,6 +458,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
     keep_tau_in_order(k, p);  // a failed particle's: zero, it carries no stress
   }
   throw_if_bad();
+  tau_generation_ = schedule_.generation();
 }
 
 // The plane-stress laws in one pass of groups of eight particles in the schedule's
@@ -836,7 +839,7 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   // stencil row per instruction (g2p_rows.hpp).
   auto move_run = [&](Index k_begin, Index k_end) {
     if constexpr (D == 2) {
-      if (K_ == 3) {
+      if (rows()) {
         const G2PArrays2 arrays{order.data(),          stencil_.data(),           state_.mass.data(),
                                 grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
                                 particles_.u.data(),   grid_.momentum.data(),     stride[1]};
