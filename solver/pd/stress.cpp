@@ -37,13 +37,26 @@ Tensor6 hooke(const Mat<D>& eps, const core::Elastic& m, core::Setting s) {
   return out;
 }
 
+// σ : ε of the 3D stress and the in-plane/3D strain (ε_zz of plane stress does no work: σ_zz = 0).
+template <int D>
+double double_contraction(const Tensor6& s, const Mat<D>& eps) {
+  if constexpr (D == 1) {
+    return s[0] * eps(0, 0);
+  } else if constexpr (D == 2) {
+    return s[0] * eps(0, 0) + s[1] * eps(1, 1) + 2.0 * s[3] * eps(0, 1);
+  } else {
+    return s[0] * eps(0, 0) + s[1] * eps(1, 1) + s[2] * eps(2, 2) +
+        2.0 * (s[3] * eps(0, 1) + s[4] * eps(1, 2) + s[5] * eps(0, 2));
+  }
+}
+
 }  // namespace
 
 template <int D>
-std::vector<Tensor6> particle_stress(const System<D>& sys) {
+std::vector<ParticleStrain<D>> particle_strain(const System<D>& sys) {
   const auto& p = sys.particles;
   const auto& t = sys.table;
-  std::vector<Tensor6> out(p.n_real, Tensor6{});
+  std::vector<ParticleStrain<D>> out(p.n_real);
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < p.n_real; ++i) {
     Mat<D> K = Mat<D>::Zero(), N = Mat<D>::Zero();
@@ -56,10 +69,20 @@ std::vector<Tensor6> particle_stress(const System<D>& sys) {
     // defined strain; report zero stress rather than a singular solve.
     const double scale = std::pow(K.trace() / D, D);
     if (!(std::abs(K.determinant()) > 1e-10 * scale)) continue;
-    const Mat<D> H = N * K.inverse();
-    const Mat<D> eps = 0.5 * (H + H.transpose());
-    out[i] = hooke<D>(eps, sys.material, sys.setting);
+    ParticleStrain<D>& o = out[i];
+    o.grad_u = N * K.inverse();
+    const Mat<D> eps = 0.5 * (o.grad_u + o.grad_u.transpose());
+    o.stress = hooke<D>(eps, sys.material, sys.setting);
+    o.energy = 0.5 * double_contraction<D>(o.stress, eps);
   }
+  return out;
+}
+
+template <int D>
+std::vector<Tensor6> particle_stress(const System<D>& sys) {
+  const std::vector<ParticleStrain<D>> strain = particle_strain(sys);
+  std::vector<Tensor6> out(strain.size());
+  for (std::size_t i = 0; i < strain.size(); ++i) out[i] = strain[i].stress;
   return out;
 }
 
@@ -73,6 +96,9 @@ double triaxiality(const Tensor6& s) {
   return eq > 0.0 ? (s[0] + s[1] + s[2]) / 3.0 / eq : 0.0;
 }
 
+template std::vector<ParticleStrain<1>> particle_strain<1>(const System<1>&);
+template std::vector<ParticleStrain<2>> particle_strain<2>(const System<2>&);
+template std::vector<ParticleStrain<3>> particle_strain<3>(const System<3>&);
 template std::vector<Tensor6> particle_stress<1>(const System<1>&);
 template std::vector<Tensor6> particle_stress<2>(const System<2>&);
 template std::vector<Tensor6> particle_stress<3>(const System<3>&);

@@ -12,6 +12,16 @@ namespace pdmpm::pd {
 
 using Tensor6 = std::array<double, 6>;
 
+// The small-strain state behind the stress output of one particle.
+template <int D>
+struct ParticleStrain {
+  Mat<D> grad_u = Mat<D>::Zero();  // F − I from the intact bonds (zero where undefined)
+  Tensor6 stress{};                // Hooke's law of sym(F − I) for the setting
+  double energy = 0.0;             // ½ σ : ε (J/m³), the elastic energy density of that strain
+};
+
+template <int D>
+std::vector<ParticleStrain<D>> particle_strain(const System<D>& sys);
 template <int D>
 std::vector<Tensor6> particle_stress(const System<D>& sys);
 
