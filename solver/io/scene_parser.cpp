@@ -129,6 +129,11 @@ void read_model(const TomlReader& m, Scene& s, bool hybrid) {
   if (hybrid) start_hybrid_model(m, s);
 }
 
+// A PD model with a plastic state: the plastic models of the table, and hpd with its J2 law.
+bool plastic_pd_model(const Scene& s) {
+  return pd::model_info(s.model).plastic || (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2);
+}
+
 void read_material(const TomlReader& m, Scene& s) {
   s.material.rho = m.positive("density", m.number("density"));
   const auto E = m.optional_number("youngs_modulus");
@@ -173,12 +178,14 @@ void read_material(const TomlReader& m, Scene& s) {
     m.finish();
     return;
   }
-  if (pd::model_info(s.model).plastic) {
+  if (plastic_pd_model(s)) {
     read_hardening(m, s);
   } else {
     for (const char* key : {"yield_stress", "tangent_modulus"})
       if (m.has(key))
-        m.fail(key, "only for the plastic models (type = \"lps_plastic\", or \"mpm\" with constitutive = \"j2\")");
+        m.fail(key,
+               "only for the plastic models (type = \"lps_plastic\", \"hpd\" with constitutive = \"j2\", or "
+               "\"mpm\" with constitutive = \"j2\")");
   }
   if (m.has("failure")) {
     if (!pd::model_info(s.model).plastic)
@@ -482,7 +489,7 @@ std::vector<std::string> output_field_names(const Scene& s) {
   // method: 0 pd, 1 mpm, 2 transition, 3 removed; von Mises from PD or the grid, by method.
   if (s.method == Method::hybrid) return {"method", "displacement", "velocity", "damage", "von_mises"};
   std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
-  if (pd::model_info(s.model).plastic) names.insert(names.end(), {"triaxiality", "eq_plastic_strain"});
+  if (plastic_pd_model(s)) names.insert(names.end(), {"triaxiality", "eq_plastic_strain"});
   return names;
 }
 

@@ -26,7 +26,7 @@ std::string hpd_shortfall(const Scene& s, double delta) {
 }  // namespace
 
 void check_hpd_horizon(const TomlReader& d, const Scene& s, const std::string& horizon_key) {
-  if (s.model != "hpd" || s.hpd.law != pd::HpdLaw::linear_elastic) return;
+  if (s.model != "hpd" || s.hpd.law == pd::HpdLaw::axial_1d) return;
   const int lo = s.dimension + 1;
   if (s.hpd.min_overlap != 0 && s.hpd.min_overlap < lo)
     throw InputError(s.file, "model.overlap_min_points",
@@ -39,7 +39,7 @@ void check_hpd_horizon(const TomlReader& d, const Scene& s, const std::string& h
   while (ratio <= 20.0 && !hpd_shortfall(s, ratio * s.spacing).empty()) ratio += 0.05;
   std::ostringstream hint;
   if (ratio <= 20.0)
-    hint << "; the hpd model (constitutive = \"linear_elastic\") needs δ/Δx ≥ " << ratio;
+    hint << "; the hpd model (constitutive = \"" << name(s.hpd.law) << "\") needs δ/Δx ≥ " << ratio;
   else
     hint << "; no δ/Δx ≤ 20 suffices";
   hint << " (or a smaller overlap_min_points, ≥ " << lo << ")";
@@ -73,12 +73,12 @@ void read_pd_model(const TomlReader& m, Scene& s) {
       if (*k < 2 || *k > 1000)
         m.fail("overlap_min_points", "must be an integer in [dimension + 1, 1000]; got " + std::to_string(*k));
       if (s.hpd.law == pd::HpdLaw::axial_1d)
-        m.fail("overlap_min_points", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
+        m.fail("overlap_min_points", "only for the nD laws (linear_elastic, j2; axial_1d uses no sub-horizon)");
       s.hpd.min_overlap = static_cast<int>(*k);
     }
     if (auto w = m.optional_number("overlap_end_weight")) {
       if (s.hpd.law == pd::HpdLaw::axial_1d)
-        m.fail("overlap_end_weight", "only for constitutive = \"linear_elastic\" (axial_1d uses no sub-horizon)");
+        m.fail("overlap_end_weight", "only for the nD laws (linear_elastic, j2; axial_1d uses no sub-horizon)");
       s.hpd.end_weight = m.in_range("overlap_end_weight", *w, 1.0, 1e4, false, false);
     }
   } else {

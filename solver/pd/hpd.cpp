@@ -25,6 +25,19 @@ void Hpd<D>::initialise(const System<D>& sys) {
   }
   if (const auto why = sub_horizon_shortfall(sys.families.stencil, min_points_); !why.empty())
     throw std::invalid_argument("hpd: " + why);
+  if (law_ == HpdLaw::j2) {
+    if (!sys.hardening)
+      throw std::invalid_argument("hpd: constitutive = \"j2\" needs yield_stress and tangent_modulus");
+    mpm::Material material;
+    material.model = mpm::MaterialModel::j2;
+    material.elastic = sys.material;
+    material.j2 = *sys.hardening;
+    j2_ = std::make_unique<mpm::Constitutive<D>>(material, sys.setting);
+    history_.assign(sys.families.n_bonds(), mpm::PointHistory{});
+    dissipation_.assign(sys.families.n_bonds(), 0.0);
+    eq_plastic_.assign(sys.particles.n_real, 0.0);
+    bond_cauchy_.assign(sys.families.n_bonds(), Mat<3>::Zero());
+  }
   inv_m_.assign(sys.particles.n_real, 0.0);
   bond_weight_.assign(sys.families.n_bonds(), 0.0);
   for (Index i = 0; i < sys.particles.n_real; ++i) set_weighted_volume(sys, i);
@@ -173,10 +186,11 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
 #pragma omp for schedule(static)
     for (Index k = 0; k < fam.n_owners; ++k) {
       const Index i = fam.particle(k);
-      double w = 0.0;
+      double w = 0.0, eq = 0.0;
       for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
         if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
           bond_p_[b] = Mat<D>::Zero();
+          if (law_ == HpdLaw::j2) bond_cauchy_[b] = Mat<3>::Zero();
           continue;
         }
         Mat<D> H = Mat<D>::Zero();
@@ -187,11 +201,18 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
           for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
         }
         double psi = 0.0;
-        const Mat<D> S = second_piola(sys, b, H, psi);
-        bond_p_[b] = bond_weight_[b] * (S + H * S);  // V_i a_ij F S
+        if (law_ == HpdLaw::j2 && !sub_.axial[b]) {
+          bond_p_[b] = bond_weight_[b] * j2_stress(b, H, psi);
+          eq += bond_weight_[b] / p.volume[i] * history_.trial[b].eq_plastic_strain;
+        } else {
+          const Mat<D> S = second_piola(sys, b, H, psi);
+          bond_p_[b] = bond_weight_[b] * (S + H * S);                           // V_i a_ij F S
+          if (law_ == HpdLaw::j2) bond_cauchy_[b] = mpm::embed<D>(bond_p_[b]);  // an elastic axial-fallback bond: P ≈ σ
+        }
         w += bond_weight_[b] / p.volume[i] * psi;
       }
       if (req.energy) (*req.energy)[i] = w;
+      if (law_ == HpdLaw::j2) eq_plastic_[i] = eq;
     }
 #pragma omp for schedule(static)
     for (Index k = 0; k < fam.n_owners; ++k) {
@@ -202,6 +223,59 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
       p.f[i] = f / p.volume[i];
     }
   }
+}
+
+// j2: the law from bond b's committed state at F = I + H; its trial state and plastic work
+// are written, P = τ F⁻ᵀ returned, psi = the elastic energy density.
+template <int D>
+Mat<D> Hpd<D>::j2_stress(BondIndex b, const Mat<D>& H, double& psi) {
+  const Mat<D> F = Mat<D>::Identity() + H;
+  mpm::PointHistory h = history_.committed[b];
+  const mpm::StressResult r = j2_->update(F, h);
+  history_.trial[b] = h;
+  dissipation_.trial[b] = dissipation_.committed[b] + bond_weight_[b] * r.dissipation;
+  psi = r.energy;
+  bond_cauchy_[b] = bond_weight_[b] / r.J * r.kirchhoff;
+  return r.kirchhoff.template topLeftCorner<D, D>() * F.inverse().transpose();
+}
+
+template <int D>
+void Hpd<D>::accept() {
+  if (law_ != HpdLaw::j2) return;
+  history_.accept();
+  dissipation_.accept();
+}
+
+template <int D>
+void Hpd<D>::reject() {
+  if (law_ != HpdLaw::j2) return;
+  history_.reject();
+  dissipation_.reject();
+}
+
+template <int D>
+void Hpd<D>::checkpoint(core::StateArchive& a) {
+  if (law_ != HpdLaw::j2) return;
+  history_.checkpoint(a, "hpd/history");
+  dissipation_.checkpoint(a, "hpd/dissipation");
+  a.sync("hpd/eq_plastic_strain", eq_plastic_);
+}
+
+template <int D>
+double Hpd<D>::plastic_work() const {
+  double sum = 0.0;
+  for (double d : dissipation_.trial) sum += d;
+  return sum;
+}
+
+template <int D>
+Tensor6 Hpd<D>::own_stress(const System<D>& sys, Index i) const {
+  Mat<3> sigma = Mat<3>::Zero();
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+    if (sys.bonds.live(b)) sigma += bond_cauchy_[b];
+  sigma /= sys.particles.volume[i];
+  // xx, yy, zz, xy, yz, xz; σ is symmetric (τ is)
+  return {sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(0, 1), sigma(1, 2), sigma(0, 2)};
 }
 
 template <int D>

@@ -40,12 +40,25 @@
 // A plain fit averages the mode over the sub-horizon and resists weakly; weighting the bond's
 // ends (HpdOptions::end_weight) ties the fit to the bond's own stretch, as in the 1D law.
 //
+// j2 — MPM's J2 law with linear hardening (solver/mpm/constitutive.hpp: log strain, radial return,
+// plane stress by its own return map) on each bond's midpoint deformation F_ij = I + H, with a
+// plastic state (ε_p, ε̄_p) per bond side, trial/committed like the bond flags. The bond's stress
+// P_ij = τ F⁻ᵀ spreads over its sub-horizon exactly as linear_elastic's F S does, so a homogeneous
+// deformation gives every interior particle the law's own stress and plastic state; there is no
+// energy to differentiate (plastic flow dissipates), the energy output is the law's elastic
+// energy Σ_j a_ij W_e and the plastic work is booked per bond side. Axial-fallback bonds stay
+// elastic (½ E₁ Ẽ_nn²): few, at boundaries and cracks.
+//
 // Damage: a bond breaks at the critical stretch as in the other models; when the live bonds
 // change, the sub-horizons they reach are fitted again, so points across a crack leave every
 // fit. Bonds whose
 // sub-horizon is too small or flat use the axial fallback: ψ = ½ E₁ Ẽ_nn², Ẽ_nn = n·Ẽ·n, with
 // E₁ the setting's uniaxial-stress modulus (E, or E/(1 − ν²) in plane strain).
 // Ghost particles (symmetry planes) are not supported yet.
+#include <memory>
+
+#include "solver/mpm/constitutive.hpp"
+#include "solver/pd/bond_state.hpp"
 #include "solver/pd/model.hpp"
 #include "solver/pd/sub_horizon.hpp"
 
@@ -68,6 +81,19 @@ class Hpd final : public Model<D> {
   Mat<D> bond_averaged_stress(const System<D>& sys, Index i) const;
   const SubHorizon<D>& sub_horizon() const { return sub_; }
 
+  // j2: trial/committed plastic state per bond side; per particle the bond-weighted ε̄_p
+  // (Σ_j a_ij ε̄_p,ij of the last evaluation) and the plastic work so far (J).
+  void accept() override;
+  void reject() override;
+  void checkpoint(core::StateArchive& a) override;
+  const std::vector<double>* eq_plastic_strain() const override { return law_ == HpdLaw::j2 ? &eq_plastic_ : nullptr; }
+  double plastic_work() const override;
+  // j2: the stress output is the model's own, the bond average Σ_j a_ij σ_ij of the bonds'
+  // Cauchy stresses σ = τ/J (the law's J, thickness change included; exact for a homogeneous
+  // deformation); the elastic laws leave it to the deformation-gradient stress of pd/stress.hpp.
+  bool has_own_stress() const override { return law_ == HpdLaw::j2; }
+  Tensor6 own_stress(const System<D>& sys, Index i) const override;
+
  private:
   HpdLaw law_ = HpdLaw::linear_elastic;
   core::Setting setting_ = core::Setting::solid3d;
@@ -79,6 +105,11 @@ class Hpd final : public Model<D> {
   std::vector<double> bond_weight_;  // V_i a_ij per bond side
   std::vector<Mat<D>> bond_p_;       // V_i a_ij P_ij per bond side, last evaluation
   SubHorizon<D> sub_;
+  std::unique_ptr<mpm::Constitutive<D>> j2_;  // j2: the law
+  Committed<mpm::PointHistory> history_;      // j2: per bond side
+  Committed<double> dissipation_;             // j2: plastic work per bond side, V_i a_ij ∫ τ : dε_p (J)
+  std::vector<double> eq_plastic_;            // j2: per real particle, last evaluation
+  std::vector<Mat<3>> bond_cauchy_;           // j2: V_i a_ij σ_ij (3×3, σ_zz of plane strain) per bond side
 
   std::int64_t break_bonds(System<D>& sys, double s0, bool after_force) const;
   void set_weighted_volume(const System<D>& sys, Index i);
@@ -86,6 +117,7 @@ class Hpd final : public Model<D> {
   void midpoint_forces(System<D>& sys, const ForceRequest& req);
   // S(Ẽ) and ψ of bond b with F = I + H.
   Mat<D> second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, double& psi) const;
+  Mat<D> j2_stress(BondIndex b, const Mat<D>& H, double& psi);  // P; writes bond_cauchy_[b]
 };
 
 }  // namespace pdmpm::pd

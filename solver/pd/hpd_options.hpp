@@ -8,11 +8,13 @@
 namespace pdmpm::pd {
 
 // axial_1d: the 1D law on the bond's own stretch, no shear (bond-based PD, PMB's constant);
-// linear_elastic: Hooke's law of the setting on the bond-midpoint strain (nD).
-enum class HpdLaw { axial_1d, linear_elastic };
+// linear_elastic: Hooke's law of the setting on the bond-midpoint strain (nD);
+// j2: MPM's J2 law with linear hardening (solver/mpm/j2_plasticity.hpp) on the bond-midpoint
+// deformation, a plastic state per bond side.
+enum class HpdLaw { axial_1d, linear_elastic, j2 };
 
-constexpr std::array<EnumName<HpdLaw>, 2> names(HpdLaw) {
-  return {{{HpdLaw::axial_1d, "axial_1d"}, {HpdLaw::linear_elastic, "linear_elastic"}}};
+constexpr std::array<EnumName<HpdLaw>, 3> names(HpdLaw) {
+  return {{{HpdLaw::axial_1d, "axial_1d"}, {HpdLaw::linear_elastic, "linear_elastic"}, {HpdLaw::j2, "j2"}}};
 }
 
 struct HpdOptions {

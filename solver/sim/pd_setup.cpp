@@ -65,6 +65,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
     sys.hardening = s.hardening;
     sys.ductile_failure = s.failure;
   }
+  if (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2) sys.hardening = s.hardening;
   sys.isotropic_deviatoric = s.isotropic_deviatoric;
   sys.hpd = s.hpd;
 

@@ -120,8 +120,10 @@ CcRun run_central_crack(const io::Scene& scene, double end_time, int every, cons
     r.t.push_back(h.time());
     fronts(pd::local_damage(setup->pd.system), p, r.dx, r);
     const double sep = r.left.back() + r.right.back();
-    r.j_left.push_back(tip_j(h, Vec<2>(kCentre - r.left.back(), kCentre + r.left_y.back()), -Vec<2>::UnitX(), sep, scene));
-    r.j_right.push_back(tip_j(h, Vec<2>(kCentre + r.right.back(), kCentre + r.right_y.back()), Vec<2>::UnitX(), sep, scene));
+    r.j_left.push_back(
+        tip_j(h, Vec<2>(kCentre - r.left.back(), kCentre + r.left_y.back()), -Vec<2>::UnitX(), sep, scene));
+    r.j_right.push_back(
+        tip_j(h, Vec<2>(kCentre + r.right.back(), kCentre + r.right_y.back()), Vec<2>::UnitX(), sep, scene));
     r.pd_share.push_back(static_cast<double>(h.pd().movers().size()) / static_cast<double>(p.n_real));
     if (next_map < map_times.size() && h.time() >= map_times[next_map] - 0.5 * dt) {
       std::vector<double> k(static_cast<std::size_t>(p.n_real));
@@ -387,21 +389,21 @@ TEST(FullCentralCrack, TimingTableOfTheThreeModes) {
                     r.seconds.regions / total, 1e9 * perf::median(wall[m]) / ps, front_deviation(r, last[0]) / dx,
                     100.0 * j_deviation(r, last[0]), r.pd_share.back()});
   }
-  test::record_data(kProblem, "04_timing",
-                    {{"kind", "table"},
-                     {"title", "Table 1 of the paper, measured: the three modes in one process (Δx = 0.5 mm)"},
-                     {"columns",
-                      {"mode", "median wall time (s)", "saving vs pd", "saving 95 % low", "saving 95 % high",
-                       "pd share", "mpm share", "coupling share", "regions share", "ns per particle-step",
-                       "largest front deviation from pd (Δx)", "largest J deviation from pd (%)",
-                       "PD share of particles at the end"}},
-                     {"rows", rows},
-                     {"caption",
-                      "Paper (Δx = 0.25 mm, to 1.6 ms, MATLAB): pd 15520 s, expand 10210 s (34.2 %), "
-                      "expand_shrink 8890 s (42.7 %). Here: " +
-                          std::to_string(kTimingReps) +
-                          " interleaved repetitions to t = 0.25 ms, one thread; saving = 1 − ratio of medians, "
-                          "bootstrap 95 % interval; shares of the hybrid's phase_seconds."}});
+  test::record_data(
+      kProblem, "04_timing",
+      {{"kind", "table"},
+       {"title", "Table 1 of the paper, measured: the three modes in one process (Δx = 0.5 mm)"},
+       {"columns",
+        {"mode", "median wall time (s)", "saving vs pd", "saving 95 % low", "saving 95 % high", "pd share", "mpm share",
+         "coupling share", "regions share", "ns per particle-step", "largest front deviation from pd (Δx)",
+         "largest J deviation from pd (%)", "PD share of particles at the end"}},
+       {"rows", rows},
+       {"caption",
+        "Paper (Δx = 0.25 mm, to 1.6 ms, MATLAB): pd 15520 s, expand 10210 s (34.2 %), "
+        "expand_shrink 8890 s (42.7 %). Here: " +
+            std::to_string(kTimingReps) +
+            " interleaved repetitions to t = 0.25 ms, one thread; saving = 1 − ratio of medians, "
+            "bootstrap 95 % interval; shares of the hybrid's phase_seconds."}});
   const char* why = "the paper's claim; the interval is the bootstrap 95 % of the ratio of medians";
   test::record_gate(Gate{.id = "central_crack.timing.expand_saving",
                          .claim = "mode expand shall save at least 34.2 % of the pure-SBPD wall time (Δx = 0.5 mm, "
@@ -486,22 +488,23 @@ TEST(FullCentralCrack, JIntegralOfTheThreeModes) {
                       "then runs through the plate and the static form stops meaning J). The oscillation is the "
                       "grips' waves (full speed from t = 0). The paper compares its J with Madenci & Oterkus' "
                       "(not available here in numbers)."}});
-  test::record_data(kProblem, "09_j_modes",
-                    {{"kind", "table"},
-                     {"title", "J of the three modes (Δx = 0.5 mm, to 0.25 ms)"},
-                     {"columns",
-                      {"mode", "edge displacement at crack start (mm)", "J at crack start (kJ/m²)",
-                       "|J − J_pd|/J_pd at pd's start (%)", "largest |J − J_pd| to pd's start / J_pd at start (%)",
-                       "largest |J − J_pd|/J_pd per sample to pd's start (%)",
-                       "largest |J − J_pd|/J_pd per sample, whole run (%)"}},
-                     {"rows", rows},
-                     {"caption",
-                      "Per-sample deviations leave out samples where J_pd < 1 % of its largest value. The "
-                      "whole-run column includes the running crack, where the static form does not measure J."}});
+  test::record_data(
+      kProblem, "09_j_modes",
+      {{"kind", "table"},
+       {"title", "J of the three modes (Δx = 0.5 mm, to 0.25 ms)"},
+       {"columns",
+        {"mode", "edge displacement at crack start (mm)", "J at crack start (kJ/m²)",
+         "|J − J_pd|/J_pd at pd's start (%)", "largest |J − J_pd| to pd's start / J_pd at start (%)",
+         "largest |J − J_pd|/J_pd per sample to pd's start (%)", "largest |J − J_pd|/J_pd per sample, whole run (%)"}},
+       {"rows", rows},
+       {"caption",
+        "Per-sample deviations leave out samples where J_pd < 1 % of its largest value. The "
+        "whole-run column includes the running crack, where the static form does not measure J."}});
   const char* why = "the paper's and the issue's bound on the modes' J (5 %)";
   test::record_gate(Gate{.id = "central_crack.j_at_start_between_modes",
-                         .claim = "at pure SBPD's crack start, J of each tip in modes expand and expand_shrink shall be "
-                                  "within 5 % of pure SBPD's (Δx = 0.5 mm)",
+                         .claim =
+                             "at pure SBPD's crack start, J of each tip in modes expand and expand_shrink shall be "
+                             "within 5 % of pure SBPD's (Δx = 0.5 mm)",
                          .measured = at_start,
                          .expected = 0.05,
                          .compare = Compare::at_most,
@@ -510,15 +513,17 @@ TEST(FullCentralCrack, JIntegralOfTheThreeModes) {
                          .unit = "",
                          .problem = kProblem});
   test::record_gate(Gate{.id = "central_crack.j_loading_between_modes",
-                         .claim = "up to pure SBPD's crack start, J of each tip in modes expand and expand_shrink shall "
-                                  "stay within 5 % of J at the start of pure SBPD's (Δx = 0.5 mm, every 7.5 µm of edge "
-                                  "displacement)",
+                         .claim =
+                             "up to pure SBPD's crack start, J of each tip in modes expand and expand_shrink shall "
+                             "stay within 5 % of J at the start of pure SBPD's (Δx = 0.5 mm, every 7.5 µm of edge "
+                             "displacement)",
                          .measured = loading,
                          .expected = 0.05,
                          .compare = Compare::at_most,
-                         .tolerance_reason = std::string(why) + ", on the scale of J at the start: J passes near zero "
-                                                                "with the grips' waves, where a per-sample ratio "
-                                                                "measures their phase (table 09 lists it too)",
+                         .tolerance_reason = std::string(why) +
+                             ", on the scale of J at the start: J passes near zero "
+                             "with the grips' waves, where a per-sample ratio "
+                             "measures their phase (table 09 lists it too)",
                          .source = kSource,
                          .unit = "",
                          .problem = kProblem});
@@ -624,17 +629,18 @@ TEST(FullCentralCrack, RegionKnobStudy) {
                       setup +
                           " Lower left is better; the dashed line joins the variants no other one "
                           "beats in both."}});
-  test::record_data(
-      kProblem, "07_knob_table",
-      {{"kind", "table"},
-       {"title", "The hybrid's knobs, one at a time (Δx = 1 mm)"},
-       {"columns",
-        {"variant", "wall time / pure SBPD", "saving", "largest front deviation (Δx)",
-         "largest J deviation from pure SBPD (%)", "PD share of particle-steps",
-         "expansions", "conversions to PD", "conversions to MPM", "Pareto front"}},
-       {"rows", rows},
-       {"caption", setup + " J deviation: largest |J − J_pd|/J_pd of either tip over the samples where the "
-                           "2δ–4δ rings hold one tip each (empty: none did)."}});
+  test::record_data(kProblem, "07_knob_table",
+                    {{"kind", "table"},
+                     {"title", "The hybrid's knobs, one at a time (Δx = 1 mm)"},
+                     {"columns",
+                      {"variant", "wall time / pure SBPD", "saving", "largest front deviation (Δx)",
+                       "largest J deviation from pure SBPD (%)", "PD share of particle-steps", "expansions",
+                       "conversions to PD", "conversions to MPM", "Pareto front"}},
+                     {"rows", rows},
+                     {"caption",
+                      setup +
+                          " J deviation: largest |J − J_pd|/J_pd of either tip over the samples where the "
+                          "2δ–4δ rings hold one tip each (empty: none did)."}});
 }
 
 }  // namespace

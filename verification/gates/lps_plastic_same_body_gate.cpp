@@ -20,6 +20,7 @@
 #include "verification/support/gate.hpp"
 #include "verification/support/raster_image.hpp"
 #include "verification/support/scene_gate.hpp"
+#include "verification/support/strip_gauge.hpp"
 
 namespace pdmpm {
 namespace {
@@ -27,41 +28,8 @@ namespace {
 namespace mu = test::mpm_util;
 const char* kProblem = "lps_plastic";
 
-// The scene with MPM J2 in place of the PD model; everything else (body, material,
-// grips, probes, output) as written.
-io::Scene as_mpm_j2(io::Scene s) {
-  s.method = io::Method::mpm;
-  s.model = "mpm";
-  io::MpmSpec m;  // GIMP, MUSL, cell 2Δx: the defaults, Noorian et al.'s choices
-  m.constitutive = mpm::MaterialModel::j2;
-  s.mpm = m;
-  s.damage = false;
-  return s;
-}
-
-// Mean axial strain (least-squares slope of u_x against x₀) and mean σ_xx of the
-// gauge particles of one frame.
-struct GaugeReading {
-  double strain = 0.0, stress = 0.0;
-};
-
-std::vector<GaugeReading> gauge_history(const test::GateRun& run, double x_lo, double x_hi, double y_lo, double y_hi) {
-  const auto fields = run.fields();
-  std::vector<GaugeReading> out;
-  for (const auto& frame : fields.frames()) {
-    const auto pos = fields.read(frame, "position");
-    const auto u = fields.read(frame, "displacement");
-    const auto stress = fields.read(frame, "stress");  // xx, yy, zz, xy, yz, xz
-    double n = 0, sx = 0, su = 0, sxx = 0, sxu = 0, s = 0;
-    for (std::size_t i = 0; 3 * i < pos.size(); ++i) {
-      const double x0 = pos[3 * i] - u[3 * i], y0 = pos[3 * i + 1] - u[3 * i + 1];
-      if (x0 < x_lo || x0 > x_hi || y0 < y_lo || y0 > y_hi) continue;
-      n += 1, sx += x0, su += u[3 * i], sxx += x0 * x0, sxu += x0 * u[3 * i], s += stress[6 * i];
-    }
-    out.push_back({(n * sxu - sx * su) / (n * sxx - sx * sx), s / n});
-  }
-  return out;
-}
+using test::as_mpm_j2;
+using test::gauge_history;
 
 TEST(FastLpsPlasticSameBody, StripFollowsTheCurveInBothMethods) {
   const auto pd_scene = io::parse_scene(test::scene_file("plastic_strip.toml"));

@@ -10,7 +10,7 @@ namespace pdmpm::hybrid {
 namespace {
 
 const Vec<2> kCentre(0.015, 0.0075);  // the plate's centre: ≥ 2δ from every edge
-const double kRadius = 1.2e-3;       // the centre's 4 nearest sites and their neighbours
+const double kRadius = 1.2e-3;        // the centre's 4 nearest sites and their neighbours
 
 Mat<2> stretch() {
   Mat<2> H;
@@ -36,7 +36,9 @@ std::vector<core::JSample> samples(Mode mode, const mpm::PointHistory* history =
   }
   const core::ParticleKind kind = mode == Mode::pd ? core::ParticleKind::pd : core::ParticleKind::mpm;
   for (Index i = 0; i < p.n_real; ++i)
-    if ((p.x0[i] - kCentre).norm() < kRadius) EXPECT_EQ(p.kind[i], kind) << "particle " << i;
+    if ((p.x0[i] - kCentre).norm() < kRadius) {
+      EXPECT_EQ(p.kind[i], kind) << "particle " << i;
+    }
   return j_samples(*body.hybrid, kCentre, kRadius);
 }
 
