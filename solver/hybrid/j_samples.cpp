@@ -3,6 +3,7 @@
 #include "solver/hybrid/conversion.hpp"
 #include "solver/hybrid/plastic_state_transfer.hpp"
 #include "solver/mpm/constitutive.hpp"
+#include "solver/mpm/j_samples.hpp"
 #include "solver/pd/lps_plastic.hpp"
 
 namespace pdmpm::hybrid {
@@ -13,38 +14,27 @@ std::vector<core::JSample> j_samples(const Simulation<2>& h, const Vec<2>& centr
   const pd::System<2>& sys = h.pd().system();
   const auto* plastic = dynamic_cast<const pd::LpsPlastic<2>*>(&h.pd().model());
   const mpm::Constitutive<2> law(mpm.settings().material, mpm.settings().setting);
-  const core::J2Hardening& j2 = mpm.settings().material.j2;
-  const bool hardens = mpm.settings().material.model == mpm::MaterialModel::j2;
-  const double H = hardens ? j2.hardening_modulus(mpm.settings().material.elastic.E) : 0.0;
-  auto plastic_work = [&](double eq) { return hardens ? eq * (j2.yield_stress + 0.5 * H * eq) : 0.0; };
   std::vector<core::JSample> out;
   for (Index i = 0; i < p.n_real; ++i) {
     if ((p.x0[i] - centre).norm() >= radius) continue;
-    if (p.kind[i] == core::ParticleKind::removed || mpm.failed(i)) continue;
-    Mat<2> F;
-    Mat<3> tau;
-    double W = 0.0;
-    if (p.kind[i] == core::ParticleKind::pd) {
-      const auto bond_F = bond_deformation_gradient<2>(sys, i);
-      if (!bond_F) continue;
-      F = *bond_F;
-      mpm::PointHistory history = mpm.state().history[i];
-      if (plastic)
-        if (const auto fitted = plastic_state_from_pd<2>(sys, *plastic, i)) history = *fitted;
-      const mpm::StressResult r = law.update(F, history);
-      tau = r.kirchhoff;
-      W = r.energy + plastic_work(history.eq_plastic_strain);
-    } else {
-      F = mpm.state().F[i];
-      tau = mpm.state().kirchhoff[i];
-      W = mpm.state().energy[i] + plastic_work(mpm.eq_plastic_strain(i));
+    if (p.kind[i] == core::ParticleKind::removed) continue;
+    if (p.kind[i] != core::ParticleKind::pd) {
+      if (const auto s = mpm::j_sample(mpm, i)) out.push_back(*s);
+      continue;
     }
+    if (mpm.failed(i)) continue;
+    const auto F = bond_deformation_gradient<2>(sys, i);
+    if (!F) continue;
+    mpm::PointHistory history = mpm.state().history[i];
+    if (plastic)
+      if (const auto fitted = plastic_state_from_pd<2>(sys, *plastic, i)) history = *fitted;
+    const mpm::StressResult r = law.update(*F, history);
     core::JSample s;
     s.X = p.x0[i];
     s.volume = p.volume[i];
-    s.grad_u = F - Mat<2>::Identity();
-    s.stress = tau.topLeftCorner<2, 2>() * F.inverse().transpose();
-    s.energy = W;
+    s.grad_u = *F - Mat<2>::Identity();
+    s.stress = r.kirchhoff.topLeftCorner<2, 2>() * F->inverse().transpose();
+    s.energy = r.energy + mpm::monotonic_plastic_work(mpm.settings().material, history.eq_plastic_strain);
     out.push_back(s);
   }
   return out;

@@ -74,6 +74,16 @@ struct ProbeSpec {
   std::vector<double> point;
 };
 
+// [[j_integral]]: J of a crack tip (domain form, solver/core/j_integral.hpp) in history.csv as
+// column j_<name> (J/m²); 2D scenes. The tip and the ring are fixed in the reference configuration.
+struct JIntegralSpec {
+  std::string key;  // "j_integral[k]"
+  std::string name;
+  std::vector<double> tip;                  // (m)
+  std::vector<double> direction{1.0, 0.0};  // the crack's growth, normalised when read
+  double r_inner = 0.0, r_outer = 0.0;      // the ring (m), 0 ≤ r_inner < r_outer
+};
+
 struct ContactSpec {
   bool enabled = false;
   double stiffness_factor = 15.0;  // c_s = 15 c (Deryugin et al. 2023 eq 6.3)
@@ -202,6 +212,7 @@ struct Scene {
   std::vector<std::string> body_force;  // force density expressions, empty = none
   std::optional<IndenterSpec> indenter;
   std::vector<ProbeSpec> probes;
+  std::vector<JIntegralSpec> j_integrals;
   CrackSpec crack;
   std::vector<ObserveSpec> observes;
   OutputSpec output;

@@ -131,6 +131,7 @@ void read_model(const TomlReader& m, Scene& s, bool hybrid) {
 
 // A PD model with a plastic state: the plastic models of the table, and hpd with its J2 law.
 bool plastic_pd_model(const Scene& s) {
+  if (s.method == Method::mpm) return false;
   return pd::model_info(s.model).plastic || (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2);
 }
 
@@ -410,6 +411,35 @@ void read_loads(const TomlReader& root, Scene& s) {
   }
 }
 
+void read_j_integrals(const TomlReader& root, Scene& s) {
+  const auto tables = root.tables("j_integral");
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    const TomlReader& t = tables[k];
+    if (s.dimension != 2) t.fail("tip", "the J-integral is for 2D scenes only");
+    if (s.method == Method::pd && plastic_pd_model(s))
+      t.fail("name",
+             "not for the plastic PD models yet (their stress is not Hooke's law of the strain); MPM and the hybrid "
+             "read plastic particles through MPM's law");
+    JIntegralSpec j;
+    j.key = "j_integral[" + std::to_string(k) + "]";
+    j.name = t.string("name");
+    if (!std::regex_match(j.name, std::regex("[A-Za-z0-9_]+"))) t.fail("name", "must be letters, digits and _ only");
+    for (const JIntegralSpec& other : s.j_integrals)
+      if (other.name == j.name) t.fail("name", "\"" + j.name + "\" is already the name of an earlier [[j_integral]]");
+    j.tip = t.numbers("tip", 2);
+    if (auto d = t.optional_numbers("direction", 2)) {
+      const double n = std::hypot((*d)[0], (*d)[1]);
+      if (!(n > 0.0) || !std::isfinite(n)) t.fail("direction", "must be a non-zero vector");
+      j.direction = {(*d)[0] / n, (*d)[1] / n};
+    }
+    j.r_inner = t.in_range("r_inner", t.number("r_inner"), 0.0, 1e300, false, false);
+    j.r_outer = t.positive("r_outer", t.number("r_outer"));
+    if (!(j.r_outer > j.r_inner)) t.fail("r_outer", "must exceed r_inner (the ring r_inner < |x − tip| < r_outer)");
+    t.finish();
+    s.j_integrals.push_back(j);
+  }
+}
+
 void read_crack(const TomlReader& root, Scene& s) {
   if (auto c = root.optional_table("crack")) {
     s.crack.enabled = true;
@@ -541,6 +571,7 @@ Scene parse_scene_text(const std::string& text, const std::string& file_label) {
   read_initials(root, s);
   read_loads(root, s);
   read_crack(root, s);
+  read_j_integrals(root, s);
   if (auto o = root.optional_table("output"))
     read_output(*o, s);
   else

@@ -11,6 +11,7 @@
 
 namespace pdmpm::pd {
 
-std::vector<core::JSample> elastic_j_samples(const System<2>& sys);
+// Samples of the real particles within `radius` of `centre` (reference positions).
+std::vector<core::JSample> elastic_j_samples(const System<2>& sys, const Vec<2>& centre, double radius);
 
 }  // namespace pdmpm::pd

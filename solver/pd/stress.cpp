@@ -53,28 +53,32 @@ double double_contraction(const Tensor6& s, const Mat<D>& eps) {
 }  // namespace
 
 template <int D>
-std::vector<ParticleStrain<D>> particle_strain(const System<D>& sys) {
+ParticleStrain<D> particle_strain(const System<D>& sys, Index i) {
   const auto& p = sys.particles;
   const auto& t = sys.table;
-  std::vector<ParticleStrain<D>> out(p.n_real);
+  Mat<D> K = Mat<D>::Zero(), N = Mat<D>::Zero();
+  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
+    const double w = t.weight[k] * p.volume[j];
+    K += w * t.xi[k] * t.xi[k].transpose();
+    N += w * (p.u[j] - p.u[i]) * t.xi[k].transpose();
+  });
+  // A particle that has lost the bonds spanning its neighbourhood has no
+  // defined strain; report zero stress rather than a singular solve.
+  ParticleStrain<D> o;
+  const double scale = std::pow(K.trace() / D, D);
+  if (!(std::abs(K.determinant()) > 1e-10 * scale)) return o;
+  o.grad_u = N * K.inverse();
+  const Mat<D> eps = 0.5 * (o.grad_u + o.grad_u.transpose());
+  o.stress = hooke<D>(eps, sys.material, sys.setting);
+  o.energy = 0.5 * double_contraction<D>(o.stress, eps);
+  return o;
+}
+
+template <int D>
+std::vector<ParticleStrain<D>> particle_strain(const System<D>& sys) {
+  std::vector<ParticleStrain<D>> out(sys.particles.n_real);
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < p.n_real; ++i) {
-    Mat<D> K = Mat<D>::Zero(), N = Mat<D>::Zero();
-    sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
-      const double w = t.weight[k] * p.volume[j];
-      K += w * t.xi[k] * t.xi[k].transpose();
-      N += w * (p.u[j] - p.u[i]) * t.xi[k].transpose();
-    });
-    // A particle that has lost the bonds spanning its neighbourhood has no
-    // defined strain; report zero stress rather than a singular solve.
-    const double scale = std::pow(K.trace() / D, D);
-    if (!(std::abs(K.determinant()) > 1e-10 * scale)) continue;
-    ParticleStrain<D>& o = out[i];
-    o.grad_u = N * K.inverse();
-    const Mat<D> eps = 0.5 * (o.grad_u + o.grad_u.transpose());
-    o.stress = hooke<D>(eps, sys.material, sys.setting);
-    o.energy = 0.5 * double_contraction<D>(o.stress, eps);
-  }
+  for (Index i = 0; i < sys.particles.n_real; ++i) out[i] = particle_strain(sys, i);
   return out;
 }
 
@@ -96,6 +100,9 @@ double triaxiality(const Tensor6& s) {
   return eq > 0.0 ? (s[0] + s[1] + s[2]) / 3.0 / eq : 0.0;
 }
 
+template ParticleStrain<1> particle_strain<1>(const System<1>&, Index);
+template ParticleStrain<2> particle_strain<2>(const System<2>&, Index);
+template ParticleStrain<3> particle_strain<3>(const System<3>&, Index);
 template std::vector<ParticleStrain<1>> particle_strain<1>(const System<1>&);
 template std::vector<ParticleStrain<2>> particle_strain<2>(const System<2>&);
 template std::vector<ParticleStrain<3>> particle_strain<3>(const System<3>&);

@@ -21,6 +21,8 @@ struct ParticleStrain {
 };
 
 template <int D>
+ParticleStrain<D> particle_strain(const System<D>& sys, Index i);
+template <int D>
 std::vector<ParticleStrain<D>> particle_strain(const System<D>& sys);
 template <int D>
 std::vector<Tensor6> particle_stress(const System<D>& sys);

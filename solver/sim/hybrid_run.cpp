@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "solver/hybrid/j_samples.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/sim/frame_fields.hpp"
 #include "solver/sim/output_schedule.hpp"
@@ -107,6 +108,7 @@ void HybridRun<D>::start_outputs() {
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.pd.probes, cols);
+  add_j_integral_columns(s_.pd.j_integrals, cols);
   rec_.checkpoints([this](core::StateArchive& a) { state(a); });
   rec_.start(cols, D, end_time_, "pd");
 }
@@ -180,6 +182,9 @@ void HybridRun<D>::history_row(std::int64_t step, double t) {
   for (const Vec<D>& r : reactions())
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   add_probe_values<D>(s_.pd.probes, p_.u, p_.v, row);
+  if constexpr (D == 2)
+    add_j_integral_values(
+        s_.pd.j_integrals, [&](const Vec<2>& tip, double r) { return hybrid::j_samples(h_, tip, r); }, row);
   rec_.write_history(row);
 }
 

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "solver/mpm/j_samples.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/frame_fields.hpp"
 #include "solver/sim/output_schedule.hpp"
@@ -69,6 +70,7 @@ void MpmRun<D>::start_outputs() {
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.probes, cols);
+  add_j_integral_columns(s_.j_integrals, cols);
   rec_.checkpoints([this](core::StateArchive& a) { state(a); });
   rec_.start(cols, D, end_time_, "failed");
 }
@@ -107,6 +109,9 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   }
   add_probe_values<D>(s_.probes, p_.u, p_.v, row);
+  if constexpr (D == 2)
+    add_j_integral_values(
+        s_.j_integrals, [&](const Vec<2>& tip, double r) { return mpm::j_samples(sim_, tip, r); }, row);
   rec_.write_history(row);
 }
 

@@ -171,6 +171,7 @@ MpmSetup<D> build_mpm(const io::Scene& s) {
   out.settings = std::move(grid.settings);
   out.grid_bc_source = std::move(grid.grid_bc_source);
   out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
+  out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real);
   return out;
 }
 

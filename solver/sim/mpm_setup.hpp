@@ -11,6 +11,7 @@
 #include "solver/io/scene.hpp"
 #include "solver/mpm/settings.hpp"
 #include "solver/mpm/simulation.hpp"
+#include "solver/sim/j_integral_outputs.hpp"
 #include "solver/sim/probes.hpp"
 
 namespace pdmpm::sim {
@@ -52,6 +53,7 @@ struct MpmSetup {
   // scene boundary.
   std::vector<int> grid_bc_source;
   std::vector<Probe> probes;
+  std::vector<JIntegralOutput> j_integrals;  // [[j_integral]] (2D)
   // [[initial]], already applied to u and v; set_initial_deformation gives the
   // simulation the matching deformation gradients.
   std::vector<bc::InitialCondition<D>> initial;

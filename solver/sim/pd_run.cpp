@@ -9,6 +9,7 @@
 #include "solver/core/error.hpp"
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/damage.hpp"
+#include "solver/pd/j_samples.hpp"
 #include "solver/pd/stress.hpp"
 #include "solver/time/dynamic_relaxation.hpp"
 #include "solver/sim/crack_report.hpp"
@@ -128,6 +129,7 @@ void PdRun<D>::start_outputs() {
   for (const auto& c : s_.boundaries.constraints)
     for (int a = 0; a < D; ++a) cols.push_back("reaction_" + c.name + "_" + axis_name(a));
   add_probe_columns<D>(s_.probes, cols);
+  add_j_integral_columns(s_.j_integrals, cols);
   if (scene_.time.integrator == io::Integrator::adr) cols.insert(cols.end(), {"adr_iterations", "adr_residual"});
   if (s_.crack) {
     crack_.emplace(s_.system, *s_.crack, s_.locations, s_.crack_exclude);
@@ -201,6 +203,9 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   }
   add_probe_values<D>(s_.probes, p_.u, p_.v, row);
+  if constexpr (D == 2)
+    add_j_integral_values(
+        s_.j_integrals, [&](const Vec<2>& tip, double r) { return pd::elastic_j_samples(s_.system, tip, r); }, row);
   if (scene_.time.integrator == io::Integrator::adr) {
     row.push_back(static_cast<double>(relax_.iterations));
     row.push_back(relax_.residual);

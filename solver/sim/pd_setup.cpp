@@ -144,6 +144,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
                         c);
   }
   out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
+  out.j_integrals = j_integral_outputs<D>(s, sys.particles.x0, sys.particles.n_real);
   if (s.crack.enabled) {
     out.crack =
         pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};

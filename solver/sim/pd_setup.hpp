@@ -17,6 +17,7 @@
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/model.hpp"
 #include "solver/pd/simulation.hpp"
+#include "solver/sim/j_integral_outputs.hpp"
 #include "solver/sim/probes.hpp"
 
 namespace pdmpm::sim {
@@ -32,10 +33,11 @@ struct PdSetup {
   std::optional<bc::Indenter<D>> indenter;
   std::optional<pd::ShortRangeContact<D>> contact;
   std::vector<Probe> probes;
-  double critical_stretch = 0.0;  // 0 when damage is off
+  std::vector<JIntegralOutput> j_integrals;  // [[j_integral]] (2D)
+  double critical_stretch = 0.0;             // 0 when damage is off
   bool damage = false;
   bool break_after_force = false;  // LAMMPS' bond-break timing (scene model.break_timing)
-  std::int64_t precrack_cut = 0;  // bond sides cut by pre-cracks
+  std::int64_t precrack_cut = 0;   // bond sides cut by pre-cracks
   // Crack observables, when the scene asks for them.
   std::optional<pd::CrackSettings> crack;
   std::vector<pd::NamedLocation<D>> locations;

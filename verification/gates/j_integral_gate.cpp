@@ -26,6 +26,7 @@
 #include "solver/sim/pd_setup.hpp"
 #include "solver/time/dynamic_relaxation.hpp"
 #include "verification/support/gate.hpp"
+#include "verification/support/scene_gate.hpp"
 
 namespace pdmpm {
 namespace {
@@ -77,7 +78,7 @@ Level solve(double dx) {
   lv.iterations = res.iterations;
   lv.residual = res.residual;
   lv.particles = setup.system.particles.n_real;
-  const auto samples = pd::elastic_j_samples(setup.system);
+  const auto samples = pd::elastic_j_samples(setup.system, Vec<2>::Zero(), 2.0 * half_length);  // both tips' rings
   const double jref = reference_j(s);
   double lo = 1e300, hi = -1e300, sum = 0;
   for (const auto& [r0, r1] : rings) {
@@ -193,6 +194,19 @@ void study(const std::string& tier, const std::vector<double>& dxs) {
 }
 
 TEST(FastJIntegral, CentreCrackAgainstLefm) { study("fast", {1e-3, 0.5e-3}); }
+
+// The user's path: the scene file's [[j_integral]] tables (ring 0.3–0.8 a at each tip) give
+// history.csv columns j_right and j_left equal to what this gate computes from the same state.
+TEST(FastJIntegral, SceneHistoryColumnsAreTheGatesJ) {
+  const io::Scene s = io::parse_scene(scene_file());
+  const auto run = test::run_for_gate(s, problem, "scene_run");
+  const Level lv = solve(s.spacing);
+  const double jref = reference_j(s);
+  ASSERT_EQ(rings.back(), (std::pair{0.3, 0.8}));  // the scene's ring
+  // The same relaxation (iterations and residual alike) and the same particle sums: round-off only.
+  EXPECT_NEAR(run.history("j_right").back() / jref, lv.j_right.back(), 1e-9);
+  EXPECT_NEAR(run.history("j_left").back() / jref, lv.j_left.back(), 1e-9);
+}
 TEST(FullJIntegral, CentreCrackAgainstLefm) { study("full", {1e-3, 0.5e-3, 0.25e-3}); }
 
 }  // namespace
