@@ -10,7 +10,7 @@
 namespace pdmpm::pd {
 namespace {
 
-constexpr double kYield = 250e6, kTangent = 2e9;
+constexpr double kHpdYield = 250e6, kHpdTangent = 2e9;
 
 template <int D>
 System<D> j2_block(core::Setting s, int sites) {
@@ -22,7 +22,7 @@ System<D> j2_block(core::Setting s, int sites) {
   spec.measure = D == 3 ? 1.0 : 1e-3;
   auto sys = test::make_block<D>(spec);
   sys.hpd.law = HpdLaw::j2;
-  sys.hardening = core::J2Hardening{kYield, kTangent};
+  sys.hardening = core::J2Hardening{kHpdYield, kHpdTangent};
   return sys;
 }
 
@@ -119,7 +119,7 @@ TEST(HpdJ2, AcceptCommitsAndRejectRestoresThePlasticState) {
   evaluate(0.9);
   EXPECT_DOUBLE_EQ((*hpd.eq_plastic_strain())[centre], eq_loaded);
   const double unloaded = hpd.bond_averaged_stress(sys, centre).norm();
-  EXPECT_LT(unloaded, loaded - 0.05 * kYield);
+  EXPECT_LT(unloaded, loaded - 0.05 * kHpdYield);
   EXPECT_GT(unloaded, 0.5 * loaded);
 }
 

@@ -7,8 +7,8 @@
 namespace pdmpm::pd {
 namespace {
 
-constexpr double dx = 1e-3;
-constexpr double delta = 3.015e-3;
+constexpr double kPvDx = 1e-3;
+constexpr double kPvDelta = 3.015e-3;
 
 struct Row {
   double r;                        // bond length
@@ -17,39 +17,41 @@ struct Row {
 
 TEST(PartialVolume, RampEndsAndMiddle) {
   const Row rows[] = {
-      {0.5 * delta, 1.0, 1.0, 1.0},                                  // well inside
-      {delta - 0.5 * dx, 1.0, 1.0, 1.0},                             // inner end of the ramp
-      {delta - 0.25 * dx, 1.0, 0.75, 0.75}, {delta, 1.0, 0.5, 0.5},  // middle of the full ramp, end of seed001's
-      {delta + 0.25 * dx, 0.0, 0.0, 0.25},  {delta + 0.5 * dx, 0.0, 0.0, 0.0},  // outer end of the extended ramp
-      {delta + 0.75 * dx, 0.0, 0.0, 0.0},
+      {0.5 * kPvDelta, 1.0, 1.0, 1.0},          // well inside
+      {kPvDelta - 0.5 * kPvDx, 1.0, 1.0, 1.0},  // inner end of the ramp
+      {kPvDelta - 0.25 * kPvDx, 1.0, 0.75, 0.75},
+      {kPvDelta, 1.0, 0.5, 0.5},  // middle of the full ramp, end of seed001's
+      {kPvDelta + 0.25 * kPvDx, 0.0, 0.0, 0.25},
+      {kPvDelta + 0.5 * kPvDx, 0.0, 0.0, 0.0},  // outer end of the extended ramp
+      {kPvDelta + 0.75 * kPvDx, 0.0, 0.0, 0.0},
   };
   for (const auto& row : rows) {
     SCOPED_TRACE("r = " + std::to_string(row.r));
-    EXPECT_NEAR(partial_volume(PartialVolume::none, row.r, delta, dx), row.none, 1e-12);
-    EXPECT_NEAR(partial_volume(PartialVolume::seed001, row.r, delta, dx), row.seed001, 1e-12);
-    EXPECT_NEAR(partial_volume(PartialVolume::extended, row.r, delta, dx), row.extended, 1e-12);
+    EXPECT_NEAR(partial_volume(PartialVolume::none, row.r, kPvDelta, kPvDx), row.none, 1e-12);
+    EXPECT_NEAR(partial_volume(PartialVolume::seed001, row.r, kPvDelta, kPvDx), row.seed001, 1e-12);
+    EXPECT_NEAR(partial_volume(PartialVolume::extended, row.r, kPvDelta, kPvDx), row.extended, 1e-12);
   }
 }
 
 TEST(PartialVolume, BondAtTheHorizonWithinRoundingIsKept) {
   // δ computed as m·Δx may sit one ulp below a lattice distance; the stencil
   // admits such a bond (slack 1e-10), so β must not drop it either.
-  const double r = delta * (1.0 + 1e-12);
-  EXPECT_NEAR(partial_volume(PartialVolume::none, r, delta, dx), 1.0, 1e-12);
-  EXPECT_NEAR(partial_volume(PartialVolume::seed001, r, delta, dx), 0.5, 1e-8);
-  EXPECT_NEAR(partial_volume(PartialVolume::extended, r, delta, dx), 0.5, 1e-8);
+  const double r = kPvDelta * (1.0 + 1e-12);
+  EXPECT_NEAR(partial_volume(PartialVolume::none, r, kPvDelta, kPvDx), 1.0, 1e-12);
+  EXPECT_NEAR(partial_volume(PartialVolume::seed001, r, kPvDelta, kPvDx), 0.5, 1e-8);
+  EXPECT_NEAR(partial_volume(PartialVolume::extended, r, kPvDelta, kPvDx), 0.5, 1e-8);
 }
 
 TEST(PartialVolume, FamilyRatio) {
-  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::none, delta, dx), 3.015);
-  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::seed001, delta, dx), 3.015);
-  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::extended, delta, dx), 3.515);
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::none, kPvDelta, kPvDx), 3.015);
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::seed001, kPvDelta, kPvDx), 3.015);
+  EXPECT_DOUBLE_EQ(family_ratio(PartialVolume::extended, kPvDelta, kPvDx), 3.515);
 }
 
 TEST(PartialVolume, ZeroBeyondTheFamilyRadius) {
   for (PartialVolume pv : {PartialVolume::none, PartialVolume::seed001, PartialVolume::extended}) {
-    const double reach = family_ratio(pv, delta, dx) * dx;
-    EXPECT_EQ(partial_volume(pv, reach * (1.0 + 1e-6), delta, dx), 0.0) << name(pv);
+    const double reach = family_ratio(pv, kPvDelta, kPvDx) * kPvDx;
+    EXPECT_EQ(partial_volume(pv, reach * (1.0 + 1e-6), kPvDelta, kPvDx), 0.0) << name(pv);
   }
 }
 
