@@ -30,14 +30,6 @@ io::Scene as_hpd_j2(io::Scene s) {
   return s;
 }
 
-// y at xq on the polyline (x ascending), clamped to its ends.
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xq) {
-  if (xq <= x.front()) return y.front();
-  for (std::size_t k = 1; k < x.size(); ++k)
-    if (xq <= x[k]) return y[k - 1] + (y[k] - y[k - 1]) * (xq - x[k - 1]) / (x[k] - x[k - 1]);
-  return y.back();
-}
-
 TEST(FastHpdJ2, StripAgainstMpmJ2OnTheSameBody) {
   const auto scene = io::parse_scene(test::scene_file("plastic_strip.toml"));
   const double E = scene.material.E, nu = scene.material.nu;
@@ -64,7 +56,7 @@ TEST(FastHpdJ2, StripAgainstMpmJ2OnTheSameBody) {
     last = std::max(last, r.strain);
     if (r.strain < 0.25 * sy / E || r.strain > e_mpm.back())
       continue;  // below: stresses near zero; above: no MPM frame
-    const double ref = interpolate(e_mpm, s_mpm, r.strain);
+    const double ref = test::interpolate(e_mpm, s_mpm, r.strain);
     worst = std::max(worst, std::abs(r.stress - ref) / ref);
     worst_law = std::max(worst_law, std::abs(r.stress - law(r.strain)) / law(r.strain));
   }

@@ -30,6 +30,7 @@ const char* kProblem = "lps_plastic";
 
 using test::as_mpm_j2;
 using test::gauge_history;
+using test::interpolate;
 
 TEST(FastLpsPlasticSameBody, StripFollowsTheCurveInBothMethods) {
   const auto pd_scene = io::parse_scene(test::scene_file("plastic_strip.toml"));
@@ -122,15 +123,6 @@ double band_mean(const PlasticMap& m, double x_c, double half_width) {
   for (std::size_t i = 0; i < m.x0.size(); ++i)
     if (std::abs(m.x0[i][0] - x_c) <= half_width) sum += m.eq_plastic[i], n += 1;
   return sum / n;
-}
-
-// Linear interpolation of y(x) at xq on a curve with increasing x (clamped at the ends).
-double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xq) {
-  const auto it = std::lower_bound(x.begin(), x.end(), xq);
-  if (it == x.begin()) return y.front();
-  if (it == x.end()) return y.back();
-  const std::size_t k = it - x.begin();
-  return y[k - 1] + (y[k] - y[k - 1]) * (xq - x[k - 1]) / (x[k] - x[k - 1]);
 }
 
 TEST(FastLpsPlasticSameBody, NotchedStripLocalisesInBothMethods) {

@@ -1,5 +1,7 @@
 #include "verification/support/strip_gauge.hpp"
 
+#include <algorithm>
+
 namespace pdmpm::test {
 
 io::Scene as_mpm_j2(io::Scene s) {
@@ -28,6 +30,14 @@ std::vector<GaugeReading> gauge_history(const GateRun& run, double x_lo, double 
     out.push_back({(n * sxu - sx * su) / (n * sxx - sx * sx), s / n});
   }
   return out;
+}
+
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xq) {
+  const auto it = std::lower_bound(x.begin(), x.end(), xq);
+  if (it == x.begin()) return y.front();
+  if (it == x.end()) return y.back();
+  const std::size_t k = static_cast<std::size_t>(it - x.begin());
+  return y[k - 1] + (y[k] - y[k - 1]) * (xq - x[k - 1]) / (x[k] - x[k - 1]);
 }
 
 }  // namespace pdmpm::test

@@ -19,4 +19,7 @@ struct GaugeReading {
 };
 std::vector<GaugeReading> gauge_history(const GateRun& run, double x_lo, double x_hi, double y_lo, double y_hi);
 
+// y at xq on the polyline (x, y), x ascending; the end values beyond its ends.
+double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xq);
+
 }  // namespace pdmpm::test
