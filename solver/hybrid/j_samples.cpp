@@ -1,5 +1,7 @@
 #include "solver/hybrid/j_samples.hpp"
 
+#include "solver/core/error.hpp"
+
 #include "solver/hybrid/conversion.hpp"
 #include "solver/hybrid/plastic_state_transfer.hpp"
 #include "solver/mpm/constitutive.hpp"
@@ -28,7 +30,12 @@ std::vector<core::JSample> j_samples(const Simulation<2>& h, const Vec<2>& centr
     mpm::PointHistory history = mpm.state().history[i];
     if (plastic)
       if (const auto fitted = plastic_state_from_pd<2>(sys, *plastic, i)) history = *fitted;
-    const mpm::StressResult r = law.update(*F, history);
+    mpm::StressResult r;
+    try {
+      r = law.update(*F, history);
+    } catch (const RunError&) {  // an inverted F (a particle crushed into the crack): no sample, as without F
+      continue;
+    }
     core::JSample s;
     s.X = p.x0[i];
     s.volume = p.volume[i];

@@ -11,7 +11,8 @@
 // monotonic path to the particle's ε̄_p under linear hardening, σ_y ε̄_p + ½ H ε̄_p²: the
 // deformation-theory energy for which J of an elastoplastic body is defined (Rice 1968),
 // and the same for both methods (PD keeps no per-particle plastic work). Skipped: removed
-// and failed particles, and PD particles whose live bonds no longer determine F (the crack).
+// and failed particles, and PD particles whose live bonds no longer determine F (the crack) or
+// give an inverted one.
 #include <vector>
 
 #include "solver/core/j_integral.hpp"

@@ -1,7 +1,10 @@
 #include "solver/pd/hpd.hpp"
 
+#include <limits>
 #include <stdexcept>
+#include <string>
 
+#include "solver/core/error.hpp"
 #include "solver/pd/bond_kinematics.hpp"
 #include "solver/pd/constants.hpp"
 
@@ -179,6 +182,7 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
   if (sub_.stale(sys)) sub_.update(sys, min_points_, end_weight_);
   auto& p = sys.particles;
   const auto fam = sys.family_view();
+  Index inverted = std::numeric_limits<Index>::max();  // j2: the lowest particle with an inverted bond
   // One parallel region, two loops (the barrier between them is the for's): a fork less per
   // evaluation, which counts in the many small steps of the conservation gates.
 #pragma omp parallel
@@ -202,7 +206,13 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
         }
         double psi = 0.0;
         if (law_ == HpdLaw::j2 && !sub_.axial[b]) {
-          bond_p_[b] = bond_weight_[b] * j2_stress(b, H, psi);
+          try {
+            bond_p_[b] = bond_weight_[b] * j2_stress(b, H, psi);
+          } catch (const RunError&) {  // det F ≤ 0 at the midpoint: reported after the region
+            bond_p_[b] = Mat<D>::Zero();
+#pragma omp critical(hpd_inverted)
+            inverted = std::min(inverted, i);
+          }
           eq += bond_weight_[b] / p.volume[i] * history_.trial[b].eq_plastic_strain;
         } else {
           const Mat<D> S = second_piola(sys, b, H, psi);
@@ -223,6 +233,9 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
       p.f[i] = f / p.volume[i];
     }
   }
+  if (inverted != std::numeric_limits<Index>::max())
+    throw RunError("hpd (constitutive = \"j2\"): a bond of particle " + std::to_string(inverted) +
+                   " has an inverted midpoint deformation (det F ≤ 0); the step may be too large or the body crushed");
 }
 
 // j2: the law from bond b's committed state at F = I + H; its trial state and plastic work

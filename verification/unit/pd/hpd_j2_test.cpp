@@ -3,6 +3,7 @@
 // accept/reject commit and restore the bonds' plastic state.
 #include <gtest/gtest.h>
 
+#include "solver/core/error.hpp"
 #include "solver/mpm/constitutive.hpp"
 #include "solver/pd/hpd.hpp"
 #include "verification/support/pd_fixtures.hpp"
@@ -121,6 +122,22 @@ TEST(HpdJ2, AcceptCommitsAndRejectRestoresThePlasticState) {
   const double unloaded = hpd.bond_averaged_stress(sys, centre).norm();
   EXPECT_LT(unloaded, loaded - 0.05 * kHpdYield);
   EXPECT_GT(unloaded, 0.5 * loaded);
+}
+
+// A body turned inside out (F = diag(−½, 1) at every bond, det F < 0): a run error naming a
+// particle, not a crash in the parallel loop.
+TEST(HpdJ2, AnInvertedBondIsARunError) {
+  auto sys = j2_block<2>(core::Setting::plane_strain, 12);
+  for (Index i = 0; i < sys.n_real(); ++i) sys.particles.u[i] = Vec<2>(-1.5 * sys.particles.x0[i][0], 0.0);
+  Hpd<2> hpd;
+  hpd.initialise(sys);
+  ForceRequest req;
+  try {
+    hpd.compute_forces(sys, req);
+    ADD_FAILURE() << "no error";
+  } catch (const RunError& e) {
+    EXPECT_NE(std::string(e.what()).find("inverted midpoint deformation"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
