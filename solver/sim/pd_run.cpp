@@ -411,8 +411,11 @@ RunResult PdRun<D>::run() {
     verlet();
   else
     adr();
-  return rec_.finish(steps_done_, static_cast<double>(steps_done_) * dt_, simulation_.broken_bonds(), p_.n_real,
-                     summary());
+  // t as the run counts it: time (verlet) or the load factor of the steps done (adr).
+  const double t = scene_.time.integrator == io::Integrator::verlet
+      ? static_cast<double>(steps_done_) * dt_
+      : static_cast<double>(steps_done_) / static_cast<double>(total_steps_);
+  return rec_.finish(steps_done_, t, simulation_.broken_bonds(), p_.n_real, summary());
 }
 
 }  // namespace
