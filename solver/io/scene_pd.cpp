@@ -81,8 +81,13 @@ void read_pd_model(const TomlReader& m, Scene& s) {
         m.fail("overlap_end_weight", "only for the nD laws (linear_elastic, j2; axial_1d uses no sub-horizon)");
       s.hpd.end_weight = m.in_range("overlap_end_weight", *w, 1.0, 1e4, false, false);
     }
+    if (auto g = m.optional_number("stabilization")) {
+      if (s.hpd.law == pd::HpdLaw::axial_1d)
+        m.fail("stabilization", "only for the nD laws (linear_elastic, j2; axial_1d uses no sub-horizon)");
+      s.hpd.stabilization = m.in_range("stabilization", *g, 0.0, 10.0, false, false);
+    }
   } else {
-    for (const char* key : {"constitutive", "overlap_min_points", "overlap_end_weight"})
+    for (const char* key : {"constitutive", "overlap_min_points", "overlap_end_weight", "stabilization"})
       if (m.has(key)) m.fail(key, "only for type = \"hpd\" (MPM's law is [material] constitutive)");
   }
   if (auto c = m.optional_table("contact")) {

@@ -1,5 +1,6 @@
 #include "solver/pd/hpd.hpp"
 
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -45,7 +46,10 @@ void Hpd<D>::initialise(const System<D>& sys) {
   bond_weight_.assign(sys.families.n_bonds(), 0.0);
   for (Index i = 0; i < sys.particles.n_real; ++i) set_weighted_volume(sys, i);
   bond_p_.assign(sys.families.n_bonds(), Mat<D>::Zero());
+  stabilization_ = sys.hpd.stabilization;
+  residual_modulus_ = 2.0 * stabilization_ * shear_;
   sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);
+  residual_force_.assign(stabilization_ > 0.0 ? sub_.at_bond.size() : 0, Vec<D>::Zero());
 }
 
 template <int D>
@@ -53,6 +57,7 @@ void Hpd<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
   if (law_ == HpdLaw::axial_1d) return;
   for (Index i : changed) set_weighted_volume(sys, i);
   sub_ = SubHorizon<D>::build(sys, min_points_, end_weight_);  // the reference family changed
+  residual_force_.assign(stabilization_ > 0.0 ? sub_.at_bond.size() : 0, Vec<D>::Zero());
 }
 
 template <int D>
@@ -88,7 +93,25 @@ double Hpd<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
     for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l) row += sub_.coef[l].norm();
     sum += bond_weight_[b] * sub_.at_coef[q].norm() * row;
   }
-  return 0.5 * modulus * sum / sys.particles.volume[i];
+  // The stabilisation: ∂(G V_i r_i)/∂u_l = G V_i (δ_il − V_l/ΣV − V_l (x_l − x̄)·K̃⁻¹(x_i − x̄)) (times the
+  // unit tensor; positions relative to the bond's owner).
+  double residual = 0.0;
+  if (stabilization_ > 0.0)
+    for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) {
+      const BondIndex b = sub_.at_bond[q];
+      if (sub_.at_volume[q] == 0.0) continue;
+      const Index owner = sub_.point[sub_.begin[b]];  // a side's first slot is its owner
+      auto from_centroid = [&](Index k) -> Vec<D> {
+        return sys.particles.x0[k] - sys.particles.x0[owner] - sub_.centroid[b];
+      };
+      const Vec<D> gi = sub_.volume_inverse[b] * from_centroid(i);
+      double row = 0.0;
+      for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l)
+        row += std::abs((sub_.point[l] == i ? 1.0 : 0.0) -
+                        sub_.volume[l] * (sub_.inv_volume[b] + from_centroid(sub_.point[l]).dot(gi)));
+      residual += residual_modulus_ * bond_weight_[b] * sub_.inv_second_moment[b] * sub_.at_volume[q] * row;
+    }
+  return 0.5 * (modulus * sum + residual) / sys.particles.volume[i];
 }
 
 template <int D>
@@ -195,14 +218,19 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
         if (!sys.bonds.live(b)) {  // its slots hold zeros; a zero P keeps an old inf out of 0 · P
           bond_p_[b] = Mat<D>::Zero();
           if (law_ == HpdLaw::j2) bond_cauchy_[b] = Mat<3>::Zero();
+          if (stabilization_ > 0.0) clear_residual(b);
           continue;
         }
         Mat<D> H = Mat<D>::Zero();
         // Column by column: the outer-product expression made GCC spill the product to the stack and
         // reload it across two stores, a store-forwarding stall per entry (3× slower).
-        for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
-          const Vec<D>& u = p.u[sub_.point[e]];
-          for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
+        if (stabilization_ > 0.0) {
+          w += fit_and_residual(sys, i, b, H) / p.volume[i];
+        } else {
+          for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) {
+            const Vec<D>& u = p.u[sub_.point[e]];
+            for (int a = 0; a < D; ++a) H.col(a) += sub_.coef[e][a] * u;
+          }
         }
         double psi = 0.0;
         if (law_ == HpdLaw::j2 && !sub_.axial[b]) {
@@ -230,12 +258,64 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
       Vec<D> f = Vec<D>::Zero();
       for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q)
         f -= bond_p_[sub_.at_bond[q]] * sub_.at_coef[q];
+      if (stabilization_ > 0.0)  // −∂/∂u_i of ½ G Σ_l V_l |r_l|² is −G V_i r_i (the fit is a V-orthogonal projection)
+        for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) f += residual_force_[q];
       p.f[i] = f / p.volume[i];
     }
   }
   if (inverted != std::numeric_limits<Index>::max())
     throw RunError("hpd (constitutive = \"j2\"): a bond of particle " + std::to_string(inverted) +
                    " has an inverted midpoint deformation (det F ≤ 0); the step may be too large or the body crushed");
+}
+
+// Bond side b = i→j with the stabilisation (HpdOptions::stabilization): H (the weighted fit's
+// gradient, as the loop in midpoint_forces) and, in the same pass over the sub-horizon, the plain
+// fit (ū, H̃), relative to x_i and u_i so that a large rigid motion does not round the residual;
+// then the forces −G V_l r_l, G = 2gμ V_i a_ij / tr K̃, written to the slots' places by point for
+// the gather. Returns the energy ½ G Σ_l V_l |r_l|² (0 for an axial side: it has no residual).
+template <int D>
+double Hpd<D>::fit_and_residual(const System<D>& sys, Index i, BondIndex b, Mat<D>& H) {
+  // Local pointers: the stores to the residual forces would otherwise make the compiler reload
+  // every array's address in every iteration.
+  const Index* point = sub_.point.data();
+  const Vec<D>* coef = sub_.coef.data();
+  const double* volume = sub_.volume.data();
+  const BondIndex* place = sub_.entry_at.data();
+  const Vec<D>* u = sys.particles.u.data();
+  const Vec<D>* x0 = sys.particles.x0.data();
+  Vec<D>* force = residual_force_.data();
+  const BondIndex first = sub_.begin[b], last = sub_.begin[b + 1];
+  const Vec<D> ui = u[i], xi = x0[i], centroid = sub_.centroid[b];
+  Vec<D> mean = Vec<D>::Zero();
+  Mat<D> moment = Mat<D>::Zero();
+  for (BondIndex e = first; e < last; ++e) {
+    const Index l = point[e];
+    const Vec<D> ul = u[l];
+    for (int a = 0; a < D; ++a) H.col(a) += coef[e][a] * ul;
+    const Vec<D> du = ul - ui, x = volume[e] * (x0[l] - xi - centroid);
+    mean += volume[e] * du;
+    for (int a = 0; a < D; ++a) moment.col(a) += x[a] * du;
+  }
+  if (sub_.axial[b]) {
+    clear_residual(b);
+    return 0.0;
+  }
+  mean *= sub_.inv_volume[b];
+  const Mat<D> Hp = moment * sub_.volume_inverse[b];
+  const double G = residual_modulus_ * bond_weight_[b] * sub_.inv_second_moment[b];
+  double sum = 0.0;
+  for (BondIndex e = first; e < last; ++e) {
+    const Index l = point[e];
+    const Vec<D> r = u[l] - ui - mean - Hp * (x0[l] - xi - centroid);
+    sum += volume[e] * r.squaredNorm();
+    force[place[e]] = -(G * volume[e]) * r;
+  }
+  return 0.5 * G * sum;
+}
+
+template <int D>
+void Hpd<D>::clear_residual(BondIndex b) {
+  for (BondIndex e = sub_.begin[b]; e < sub_.begin[b + 1]; ++e) residual_force_[sub_.entry_at[e]] = Vec<D>::Zero();
 }
 
 // j2: the law from bond b's committed state at F = I + H; its trial state and plastic work

@@ -38,7 +38,10 @@
 // odd about the bond midpoint, so its sub-horizon fit sees a gradient and the bond resists;
 // a particle-centred (correspondence) gradient sees the mode even about x_i and gives zero.
 // A plain fit averages the mode over the sub-horizon and resists weakly; weighting the bond's
-// ends (HpdOptions::end_weight) ties the fit to the bond's own stretch, as in the 1D law.
+// ends (HpdOptions::end_weight) ties the fit to the bond's own stretch, as in the 1D law. That
+// alone gives 3D 0.43 of the bulk scale; each bond side also stores ½ G Σ_l V_l |r_l|² of its
+// plain fit's residual r (HpdOptions::stabilization; force −G V_k r_k, since the fit is a
+// V-orthogonal projection): no force, stress or energy for affine fields, objective, momentum-free.
 //
 // j2 — MPM's J2 law with linear hardening (solver/mpm/constitutive.hpp: log strain, radial return,
 // plane stress by its own return map) on each bond's midpoint deformation F_ij = I + H, with a
@@ -104,6 +107,10 @@ class Hpd final : public Model<D> {
   std::vector<double> inv_m_;        // 1/m_i (reference family)
   std::vector<double> bond_weight_;  // V_i a_ij per bond side
   std::vector<Mat<D>> bond_p_;       // V_i a_ij P_ij per bond side, last evaluation
+  // Stabilisation: g, 2gμ, and the residual forces −G V_l r_l of the last evaluation, in the
+  // sub-horizon slots' order by point (SubHorizon::at_bond).
+  double stabilization_ = 0.0, residual_modulus_ = 0.0;
+  std::vector<Vec<D>> residual_force_;
   SubHorizon<D> sub_;
   std::unique_ptr<mpm::Constitutive<D>> j2_;  // j2: the law
   Committed<mpm::PointHistory> history_;      // j2: per bond side
@@ -118,6 +125,8 @@ class Hpd final : public Model<D> {
   // S(Ẽ) and ψ of bond b with F = I + H.
   Mat<D> second_piola(const System<D>& sys, BondIndex b, const Mat<D>& H, double& psi) const;
   Mat<D> j2_stress(BondIndex b, const Mat<D>& H, double& psi);  // P; writes bond_cauchy_[b]
+  double fit_and_residual(const System<D>& sys, Index i, BondIndex b, Mat<D>& H);
+  void clear_residual(BondIndex b);
 };
 
 }  // namespace pdmpm::pd

@@ -29,6 +29,15 @@ struct HpdOptions {
   // this is what resists the checkerboard mode (1: plain fit, 17× weaker there; docs/models/hpd.md).
   // 10³ is within 10⁻³ of the exactly constrained fit and keeps the fit's matrix well conditioned.
   double end_weight = 1000.0;
+  // Stiffness g of the sub-horizon fit's residual, in units of the shear modulus: each bond side
+  // adds the energy ½ G Σ_l w_l |r_l|², r_l = u_l − ū − H (x_l − x̄) the part of its sub-horizon's
+  // displacement the affine fit does not explain, G = 2gμ/δ² · V_i a_ij / Σ_l V_l. Zero for
+  // affine fields (patch tests, the stress and the energy of a homogeneous deformation
+  // unchanged), the virial of its forces is zero, rigid motions cost nothing; it resists the
+  // short-wave modes the bond-midpoint fit alone resists weakly in 3D (docs/models/hpd.md).
+  // 1: the residual, read as a strain |r|/δ, costs what a shear strain of that size costs
+  // (energy density μ ε², weighted mean over the sub-horizon); 0: off.
+  double stabilization = 1.0;
   int min_points(int dim) const { return min_overlap > 0 ? min_overlap : dim + 1; }
 };
 

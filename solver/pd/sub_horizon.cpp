@@ -144,6 +144,7 @@ void sort_by_point(SubHorizon<D>& h, Index n) {
   h.at_begin.assign(static_cast<std::size_t>(n) + 1, 0);
   h.at_bond.resize(h.point.size());
   h.at_coef.assign(h.point.size(), Vec<D>::Zero());
+  h.at_volume.assign(h.point.size(), 0.0);
   h.entry_at.resize(h.point.size());
   std::vector<std::vector<BondIndex>> next;  // per thread: count, then the next slot, of each point
 #pragma omp parallel
@@ -180,23 +181,45 @@ template <int D>
 void fill(SubHorizon<D>& h, const System<D>& sys, const std::vector<int>& diff, Index i, BondIndex b, int min_points,
           double end_weight, std::vector<Point<D>>& pts, std::vector<Vec<D>>& coef) {
   const BondIndex first = h.begin[b], last = h.begin[b + 1];
-  auto put = [&](BondIndex e, const Vec<D>& c) { h.coef[e] = h.at_coef[h.entry_at[e]] = c; };
+  // A slot's coefficient and (for the residual) the point's volume, and their copies by point.
+  auto put = [&](BondIndex e, const Vec<D>& c, double v) {
+    h.coef[e] = h.at_coef[h.entry_at[e]] = c;
+    h.volume[e] = h.at_volume[h.entry_at[e]] = v;
+  };
   h.axial[b] = 0;
+  h.centroid[b] = Vec<D>::Zero();
+  h.volume_inverse[b] = Mat<D>::Zero();
+  h.inv_volume[b] = h.inv_second_moment[b] = 0.0;
   if (!sys.bonds.live(b)) {
-    for (BondIndex e = first; e < last; ++e) put(e, Vec<D>::Zero());
+    for (BondIndex e = first; e < last; ++e) put(e, Vec<D>::Zero(), 0.0);
     return;
   }
   gather_points(
       sys, diff, i, b, end_weight, [&](BondIndex c) { return sys.bonds.live(c); }, pts);
-  if (!fit(pts, min_points, coef)) {  // the axial fallback: the two ends, the first two slots
+  const bool residual = fit(pts, min_points, coef);
+  if (!residual) {  // the axial fallback: the two ends, the first two slots
     h.axial[b] = 1;
     const Vec<D>& xi = sys.table.xi[sys.families.shape[b]];
     pts.resize(2);
     coef = {-xi / xi.squaredNorm(), xi / xi.squaredNorm()};
+  } else {  // the plain fit's centroid and K⁻¹ (weights V_l, relative to x_i)
+    double volume = 0.0;
+    Vec<D> centre = Vec<D>::Zero();
+    for (const auto& pt : pts) volume += sys.particles.volume[pt.id], centre += sys.particles.volume[pt.id] * pt.x;
+    centre /= volume;
+    Mat<D> K = Mat<D>::Zero();
+    for (const auto& pt : pts) K += sys.particles.volume[pt.id] * (pt.x - centre) * (pt.x - centre).transpose();
+    h.centroid[b] = centre;
+    h.volume_inverse[b] = K.inverse();  // the same points as the weighted fit's K: not singular
+    h.inv_volume[b] = 1.0 / volume;
+    h.inv_second_moment[b] = 1.0 / K.trace();
   }
   std::size_t l = 0;
-  for (BondIndex e = first; e < last; ++e)
-    put(e, l < pts.size() && pts[l].id == h.point[e] ? coef[l++] : Vec<D>::Zero());
+  for (BondIndex e = first; e < last; ++e) {
+    const bool in = l < pts.size() && pts[l].id == h.point[e];
+    put(e, in ? coef[l] : Vec<D>::Zero(), in && residual ? sys.particles.volume[h.point[e]] : 0.0);
+    l += in;
+  }
 }
 
 }  // namespace
@@ -230,6 +253,7 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
       for (BondIndex b = 0; b < nb; ++b) h.begin[b + 1] += h.begin[b];
       h.point.resize(h.begin[nb]);
       h.coef.assign(h.begin[nb], Vec<D>::Zero());
+      h.volume.assign(h.begin[nb], 0.0);
     }
 #pragma omp for schedule(static)
     for (Index i = 0; i < n; ++i)
@@ -241,6 +265,10 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
   }
   sort_by_point(h, n);
   h.axial.assign(nb, 0);
+  h.centroid.assign(nb, Vec<D>::Zero());
+  h.volume_inverse.assign(nb, Mat<D>::Zero());
+  h.inv_volume.assign(nb, 0.0);
+  h.inv_second_moment.assign(nb, 0.0);
   h.built_live.assign(nb, 0);  // every live side differs: update fits them all
   h.update(sys, min_points, end_weight);
   return h;

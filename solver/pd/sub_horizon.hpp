@@ -37,12 +37,21 @@ struct SubHorizon {
   std::vector<Index> point;
   std::vector<Vec<D>> coef;
   std::vector<std::uint8_t> axial;  // 1: too few points or degenerate, the axial fallback
+  // The plain fit (weights V_l, ends not weighted) whose residual r_l = u_l − ū − H̃ (x_l − x̄)
+  // HpdOptions::stabilization penalises: per slot the point's volume V_l (0: not in the sub-horizon
+  // now, or no residual), per bond side x̄ = Σ V_l x_l / Σ V_l relative to x_i, K̃⁻¹ with
+  // K̃ = Σ_l V_l (x_l − x̄) ⊗ (x_l − x̄), 1 / Σ_l V_l and 1 / tr K̃; zeros for dead and axial sides.
+  std::vector<double> volume;
+  std::vector<Vec<D>> centroid;
+  std::vector<Mat<D>> volume_inverse;
+  std::vector<double> inv_volume, inv_second_moment;
   // The same slots by point, each with its bond side and a copy of its coefficient: particle k
   // appears in [at_begin[k], at_begin[k + 1]) (the force loop gathers them in order; copies, not
   // indices, so that it reads memory in sequence); entry_at[e] is slot e's place there.
   std::vector<BondIndex> at_begin;
   std::vector<BondIndex> at_bond;
   std::vector<Vec<D>> at_coef;
+  std::vector<double> at_volume;  // the slot's volume (as `volume`)
   std::vector<BondIndex> entry_at;
   std::vector<std::uint8_t> built_live;  // live bit of every bond side when last fitted
   std::int64_t n_axial = 0;              // live bond sides on the fallback

@@ -7,6 +7,7 @@
 #include <omp.h>
 
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "benchmarks/perf/stats.hpp"
@@ -36,24 +37,30 @@ TEST(FastHpdModes, CheckerboardIsResisted) {
       kProblem, "modes_1_checkerboard",
       {{"kind", "table"},
        {"title", "Checkerboard mode: mean restoring force 2δ inside the block / LPS's"},
-       {"columns", {"setting", "HPD (end weight 10³)", "HPD, plain fit (end weight 1)", "correspondence"}},
+       {"columns",
+        {"setting", "HPD (defaults: end weight 10³, stabilization 1)", "HPD, stabilization 0",
+         "HPD, plain fit (end weight 1, stabilization 0)", "correspondence"}},
        {"rows",
-        {{"2D plane strain, 16², δ = 3.015Δx", f2.hpd, f2.hpd_plain, f2.correspondence},
-         {"3D, 12³, δ = 2.015Δx", f3.hpd, f3.hpd_plain, f3.correspondence}}},
+        {{"2D plane strain, 16², δ = 3.015Δx", f2.hpd, f2.hpd_unstabilized, f2.hpd_plain, f2.correspondence},
+         {"3D, 12³, δ = 2.015Δx", f3.hpd, f3.hpd_unstabilized, f3.hpd_plain, f3.correspondence}}},
        {"caption",
-        "u_x = ±a on alternate sites, ν = 0.3. The correspondence column is a particle-centred "
-        "gradient (Silling et al. 2007): the mode is even about every particle, so it sees no "
-        "strain."}});
-  test::record_gate({.id = "hpd.checkerboard.2d",
-                     .claim = "In 2D (plane strain, δ = 3.015Δx) HPD shall resist the checkerboard mode with at least "
-                              "half of LPS's restoring force",
-                     .measured = f2.hpd,
-                     .expected = 0.5,
-                     .compare = test::Compare::at_least,
-                     .tolerance_reason = kIssueBound,
-                     .source = kSource,
-                     .unit = "",
-                     .problem = kProblem});
+        "u_x = ±a on alternate sites, ν = 0.3. Stabilization 0 is the bond-midpoint fit alone (3D: below "
+        "the bound); the default adds the fit-residual energy (docs/models/hpd.md). The correspondence "
+        "column is a particle-centred gradient (Silling et al. 2007): the mode is even about every "
+        "particle, so it sees no strain."}});
+  for (const auto& [dim, value, where] :
+       {std::tuple{"2d", f2.hpd, "2D (plane strain, δ = 3.015Δx)"}, std::tuple{"3d", f3.hpd, "3D (δ = 2.015Δx)"}})
+    test::record_gate({.id = std::string("hpd.checkerboard.") + dim,
+                       .claim = std::string("In ") + where +
+                           " HPD with its default options shall resist the checkerboard mode with at least half "
+                           "of LPS's restoring force",
+                       .measured = value,
+                       .expected = 0.5,
+                       .compare = test::Compare::at_least,
+                       .tolerance_reason = kIssueBound,
+                       .source = kSource,
+                       .unit = "",
+                       .problem = kProblem});
   for (const auto& [dim, value] : {std::pair{"2d", f2.correspondence}, std::pair{"3d", f3.correspondence}})
     test::record_gate({.id = std::string("hpd.checkerboard.correspondence_") + dim,
                        .claim = std::string("The particle-centred (correspondence) gradient shall give no restoring "
@@ -70,20 +77,23 @@ TEST(FastHpdModes, CheckerboardIsResisted) {
                        .problem = kProblem});
 }
 
-// The issue's bound in 3D is not met (0.43 measured at the default end weight, docs/models/hpd.md
-// "Zero-energy modes", open item): a failing reproduction is reported in the full tier, not hidden.
-TEST(FullHpdModes, CheckerboardIsResistedIn3D) {
-  const auto f3 = test::checkerboard_forces<3>(core::Setting::solid3d, 12, 2.015);
-  test::record_gate({.id = "hpd.checkerboard.3d",
-                     .claim = "In 3D (δ = 2.015Δx) HPD shall resist the checkerboard mode with at least half of LPS's "
-                              "restoring force",
-                     .measured = f3.hpd,
-                     .expected = 0.5,
-                     .compare = test::Compare::at_least,
-                     .tolerance_reason = kIssueBound,
-                     .source = kSource,
-                     .unit = "",
-                     .problem = kProblem});
+// The 3D mode at larger horizons (evidence for the docs' table; the fit alone weakens as δ grows).
+TEST(FullHpdModes, CheckerboardIn3DAtLargerHorizons) {
+  json rows = json::array();
+  for (const auto& [sites, m] : {std::pair{12, 2.015}, std::pair{14, 2.515}, std::pair{16, 3.015}}) {
+    const auto f = test::checkerboard_forces<3>(core::Setting::solid3d, sites, m);
+    std::printf("  3D %d³ δ = %.3fΔx: HPD %.4f, stabilization 0 %.4f, plain %.4f\n", sites, m, f.hpd,
+                f.hpd_unstabilized, f.hpd_plain);
+    rows.push_back({std::to_string(sites) + "³, δ = " + std::to_string(m).substr(0, 5) + "Δx", f.hpd,
+                    f.hpd_unstabilized, f.hpd_plain});
+    EXPECT_GE(f.hpd, 0.5) << "δ = " << m << "Δx";  // the bound of hpd.checkerboard.3d
+  }
+  test::record_data(kProblem, "modes_1_checkerboard_3d_horizons",
+                    {{"kind", "table"},
+                     {"title", "Checkerboard mode in 3D against the horizon: force / LPS's"},
+                     {"columns", {"block, horizon", "HPD (defaults)", "HPD, stabilization 0", "HPD, plain fit"}},
+                     {"rows", rows},
+                     {"caption", "As the table above, 3D, ν = 0.3."}});
 }
 
 // Seconds per force evaluation of `model` on `sys`, averaged over `calls` after a warm-up call.

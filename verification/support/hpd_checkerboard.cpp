@@ -63,19 +63,22 @@ CheckerboardForces checkerboard_forces(core::Setting setting, int sites, double 
     return sum / count;
   };
   pd::ForceRequest req;
-  auto hpd_force = [&](double end_weight) {
+  auto hpd_force = [&](double end_weight, double stabilization) {
     sys.hpd.end_weight = end_weight;
+    sys.hpd.stabilization = stabilization;
     pd::Hpd<D> hpd;
     hpd.initialise(sys);
     hpd.compute_forces(sys, req);
     return interior_mean(sys.particles.f);
   };
-  const double f_hpd = hpd_force(pd::HpdOptions{}.end_weight), f_plain = hpd_force(1.0);
+  const pd::HpdOptions defaults;
+  const double f_hpd = hpd_force(defaults.end_weight, defaults.stabilization);
+  const double f_unstabilized = hpd_force(defaults.end_weight, 0.0), f_plain = hpd_force(1.0, 0.0);
   pd::Lps<D> lps;
   lps.initialise(sys);
   lps.compute_forces(sys, req);
   const double f_lps = interior_mean(sys.particles.f);
-  return {f_hpd / f_lps, f_plain / f_lps, interior_mean(correspondence_forces(sys)) / f_lps};
+  return {f_hpd / f_lps, f_unstabilized / f_lps, f_plain / f_lps, interior_mean(correspondence_forces(sys)) / f_lps};
 }
 
 template CheckerboardForces checkerboard_forces<2>(core::Setting, int, double);

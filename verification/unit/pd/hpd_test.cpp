@@ -141,20 +141,69 @@ TEST(Hpd, AffineFieldsGiveTheConstitutiveStressForAnyPoissonRatio) {
 template <int D>
 double checkerboard(core::Setting s) {
   const auto f = test::checkerboard_forces<D>(s, D == 2 ? 16 : 12, D == 2 ? 3.015 : 2.015);
-  std::printf("checkerboard %s: |f| / LPS's: HPD %.4f (plain fit, end weight 1: %.4f), correspondence %.2e\n",
-              std::string(name(s)).c_str(), f.hpd, f.hpd_plain, f.correspondence);
+  std::printf(
+      "checkerboard %s: |f| / LPS's: HPD %.4f (stabilization 0: %.4f; plain fit, end weight 1: %.4f), correspondence "
+      "%.2e\n",
+      std::string(name(s)).c_str(), f.hpd, f.hpd_unstabilized, f.hpd_plain, f.correspondence);
   // The correspondence gradient is zero for this mode (even about every particle): no force,
   // to round-off of the sums (terms of size a·E/Δx² cancel).
   EXPECT_LT(f.correspondence, 1e-12) << name(s);
   return f.hpd;
 }
 
-// The mode's force scale is LPS's restoring force for it (a stable model of the same moduli).
-// The issue asks ≥ 0.5: reached in 2D (0.68); 3D reaches 0.43 with the default end weight, so the
-// 3D assertion guards that value (an open item of docs/models/hpd.md, not a pass of the issue's gate).
+// The forces are −(1/V_k) ∂E/∂u_k of the energy the model reports, with and without the fit-residual
+// stabilisation (its force −G w_k r_k rests on the fit being a w-orthogonal projection): central
+// differences of E = Σ V_i W_i on a random, non-affine deformation.
+template <int D>
+void forces_are_the_energy_gradient(core::Setting s, double stabilization) {
+  auto sys = block<D>(s, 0.3, D == 2 ? 10 : 6);
+  sys.hpd.stabilization = stabilization;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (auto& x : sys.particles.u)
+    for (int a = 0; a < D; ++a) x[a] = 1e-6 * u(rng);
+  const Index n = sys.n_real();
+  Hpd<D> hpd;
+  hpd.initialise(sys);
+  std::vector<double> w(n);
+  ForceRequest req;
+  req.energy = &w;
+  auto energy = [&] {
+    hpd.compute_forces(sys, req);
+    double e = 0.0;
+    for (Index i = 0; i < n; ++i) e += sys.particles.volume[i] * w[i];
+    return e;
+  };
+  energy();
+  const auto f = sys.particles.f;
+  const double scale = max_norm<D>(f, n);
+  const double h = 1e-9;  // central difference: error O(h²) ≪ the check's 1e-6, round-off ~1e-16 E / h
+  for (Index k : {Index{0}, n / 3, n / 2, n - 1})
+    for (int a = 0; a < D; ++a) {
+      const double keep = sys.particles.u[k][a];
+      sys.particles.u[k][a] = keep + h;
+      const double up = energy();
+      sys.particles.u[k][a] = keep - h;
+      const double down = energy();
+      sys.particles.u[k][a] = keep;
+      const double dE = (up - down) / (2.0 * h);
+      EXPECT_NEAR(-dE / sys.particles.volume[k], f[k][a], 1e-6 * scale)
+          << name(s) << " stabilization " << stabilization << " particle " << k << " axis " << a;
+    }
+}
+
+TEST(Hpd, ForcesAreTheGradientOfTheEnergy) {
+  for (double g : {0.0, 1.0}) {
+    forces_are_the_energy_gradient<2>(core::Setting::plane_stress, g);
+    forces_are_the_energy_gradient<3>(core::Setting::solid3d, g);
+  }
+}
+
+// The mode's force scale is LPS's restoring force for it (a stable model of the same moduli);
+// the issue asks ≥ 0.5 (measured with the defaults: 2D 0.91, 3D 0.65; the fit alone gives 3D 0.43).
 TEST(Hpd, CheckerboardModeIsResisted) {
   EXPECT_GE(checkerboard<2>(core::Setting::plane_strain), 0.5);
-  EXPECT_GE(checkerboard<3>(core::Setting::solid3d), 0.4);
+  EXPECT_GE(checkerboard<3>(core::Setting::solid3d), 0.5);
 }
 
 // Long waves: u = a e cos(k (x − x_c)) on a block; at the centre particle (far from the boundary,

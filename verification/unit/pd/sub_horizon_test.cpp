@@ -24,9 +24,15 @@ void expect_same(const SubHorizon<D>& a, const SubHorizon<D>& b, const std::stri
   EXPECT_TRUE(same_bits(a.point, b.point)) << where;
   EXPECT_TRUE(same_bits(a.coef, b.coef)) << where;
   EXPECT_TRUE(same_bits(a.axial, b.axial)) << where;
+  EXPECT_TRUE(same_bits(a.volume, b.volume)) << where;
+  EXPECT_TRUE(same_bits(a.centroid, b.centroid)) << where;
+  EXPECT_TRUE(same_bits(a.volume_inverse, b.volume_inverse)) << where;
+  EXPECT_TRUE(same_bits(a.inv_volume, b.inv_volume)) << where;
+  EXPECT_TRUE(same_bits(a.inv_second_moment, b.inv_second_moment)) << where;
   EXPECT_TRUE(same_bits(a.at_begin, b.at_begin)) << where;
   EXPECT_TRUE(same_bits(a.at_bond, b.at_bond)) << where;
   EXPECT_TRUE(same_bits(a.at_coef, b.at_coef)) << where;
+  EXPECT_TRUE(same_bits(a.at_volume, b.at_volume)) << where;
   EXPECT_TRUE(same_bits(a.entry_at, b.entry_at)) << where;
   EXPECT_TRUE(same_bits(a.built_live, b.built_live)) << where;
   EXPECT_EQ(a.n_axial, b.n_axial) << where;
