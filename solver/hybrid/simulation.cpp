@@ -99,6 +99,7 @@ void Simulation<D>::step(double dt, bool energy) {
   const double t1 = time_;
   bcs.apply_displacement(p, t1, dt);
   p.update_ghosts();
+  lap(seconds_.pd);  // the boundary conditions and ghosts are the PD body's, not region management
 
   const std::int64_t converted = events_.to_pd + events_.to_mpm;
   manage_regions();
