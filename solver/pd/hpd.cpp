@@ -99,17 +99,19 @@ double Hpd<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   if (stabilization_ > 0.0)
     for (BondIndex q = sub_.at_begin[i]; q < sub_.at_begin[i + 1]; ++q) {
       const BondIndex b = sub_.at_bond[q];
-      if (sub_.at_volume[q] == 0.0) continue;
       const Index owner = sub_.point[sub_.begin[b]];  // a side's first slot is its owner
       auto from_centroid = [&](Index k) -> Vec<D> {
         return sys.particles.x0[k] - sys.particles.x0[owner] - sub_.centroid[b];
       };
       const Vec<D> gi = sub_.volume_inverse[b] * from_centroid(i);
-      double row = 0.0;
-      for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l)
-        row += std::abs((sub_.point[l] == i ? 1.0 : 0.0) -
-                        sub_.volume[l] * (sub_.inv_volume[b] + from_centroid(sub_.point[l]).dot(gi)));
-      residual += residual_modulus_ * bond_weight_[b] * sub_.inv_second_moment[b] * sub_.at_volume[q] * row;
+      double row = 0.0, vi = 0.0;  // V_i: the volume in i's own slot (0 outside the residual)
+      for (BondIndex l = sub_.begin[b]; l < sub_.begin[b + 1]; ++l) {
+        const bool own = sub_.point[l] == i;
+        if (own) vi = sub_.volume[l];
+        row +=
+            std::abs((own ? 1.0 : 0.0) - sub_.volume[l] * (sub_.inv_volume[b] + from_centroid(sub_.point[l]).dot(gi)));
+      }
+      residual += residual_modulus_ * bond_weight_[b] * sub_.inv_second_moment[b] * vi * row;
     }
   return 0.5 * (modulus * sum + residual) / sys.particles.volume[i];
 }

@@ -144,7 +144,6 @@ void sort_by_point(SubHorizon<D>& h, Index n) {
   h.at_begin.assign(static_cast<std::size_t>(n) + 1, 0);
   h.at_bond.resize(h.point.size());
   h.at_coef.assign(h.point.size(), Vec<D>::Zero());
-  h.at_volume.assign(h.point.size(), 0.0);
   h.entry_at.resize(h.point.size());
   std::vector<std::vector<BondIndex>> next;  // per thread: count, then the next slot, of each point
 #pragma omp parallel
@@ -181,10 +180,10 @@ template <int D>
 void fill(SubHorizon<D>& h, const System<D>& sys, const std::vector<int>& diff, Index i, BondIndex b, int min_points,
           double end_weight, std::vector<Point<D>>& pts, std::vector<Vec<D>>& coef) {
   const BondIndex first = h.begin[b], last = h.begin[b + 1];
-  // A slot's coefficient and (for the residual) the point's volume, and their copies by point.
+  // A slot's coefficient (and its copy by point) and, for the residual, the point's volume.
   auto put = [&](BondIndex e, const Vec<D>& c, double v) {
     h.coef[e] = h.at_coef[h.entry_at[e]] = c;
-    h.volume[e] = h.at_volume[h.entry_at[e]] = v;
+    h.volume[e] = v;
   };
   h.axial[b] = 0;
   h.centroid[b] = Vec<D>::Zero();

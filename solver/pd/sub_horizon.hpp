@@ -51,7 +51,6 @@ struct SubHorizon {
   std::vector<BondIndex> at_begin;
   std::vector<BondIndex> at_bond;
   std::vector<Vec<D>> at_coef;
-  std::vector<double> at_volume;  // the slot's volume (as `volume`)
   std::vector<BondIndex> entry_at;
   std::vector<std::uint8_t> built_live;  // live bit of every bond side when last fitted
   std::int64_t n_axial = 0;              // live bond sides on the fallback

@@ -32,7 +32,6 @@ void expect_same(const SubHorizon<D>& a, const SubHorizon<D>& b, const std::stri
   EXPECT_TRUE(same_bits(a.at_begin, b.at_begin)) << where;
   EXPECT_TRUE(same_bits(a.at_bond, b.at_bond)) << where;
   EXPECT_TRUE(same_bits(a.at_coef, b.at_coef)) << where;
-  EXPECT_TRUE(same_bits(a.at_volume, b.at_volume)) << where;
   EXPECT_TRUE(same_bits(a.entry_at, b.entry_at)) << where;
   EXPECT_TRUE(same_bits(a.built_live, b.built_live)) << where;
   EXPECT_EQ(a.n_axial, b.n_axial) << where;
