@@ -1,5 +1,9 @@
 #include "solver/mpm/deformation_lanes.hpp"
 
+#include <immintrin.h>
+
+#include <algorithm>
+
 #include "solver/mpm/lanes.hpp"
 
 namespace pdmpm::mpm {
@@ -38,7 +42,69 @@ __attribute__((target("avx512f"))) void advance_deformation_avx512(DeformationLa
   advance_deformation_by<8>(in, dt);
 }
 
+// The reference: Simulation<2>::velocity_gradient's sum, L += v_I ∇S_Iᵀ node by node.
+void velocity_gradient_scalar(DeformationLanes& out, const Stencil<2>* stencil, int n, const Vec<2>* vg,
+                              Index row_stride) {
+  const IVec<2> stride(1, row_stride);
+  for (int l = 0; l < kDeformationLanes; ++l) {
+    Mat<2> L = Mat<2>::Zero();
+    for_each_grid_node<2, 3>(stencil[std::min(l, n - 1)], stride,
+                             [&](Index node, double, const Vec<2>& g) { L += vg[node] * g.transpose(); });
+    out.l00[l] = L(0, 0), out.l01[l] = L(0, 1), out.l10[l] = L(1, 0), out.l11[l] = L(1, 1);
+  }
+}
+
+// Lanes 2i, 2i + 1 of a stencil row hold node i's x, y (as g2p_rows reads them).
+__attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m512d row, int i) {
+  switch (i) {
+    case 0:
+      return __builtin_shufflevector(row, row, 0, 1);
+    case 1:
+      return __builtin_shufflevector(row, row, 2, 3);
+    default:
+      return __builtin_shufflevector(row, row, 4, 5);
+  }
+}
+
+// Per node ∇S = (∂S₀ᵢ S₁ⱼ, ∂S₁ⱼ S₀ᵢ); v_I ∇S_Iᵀ's column 0 is v_I ∂S/∂x (its x, y in a
+// pair), column 1 v_I ∂S/∂y; each pair is added node by node as the scalar sum adds.
+__attribute__((target("avx512f"))) void velocity_gradient_avx512(DeformationLanes& out, const Stencil<2>* stencil,
+                                                                 int n, const Vec<2>* vg, Index row_stride) {
+  const __mmask8 six = 0x3f;
+  for (int l = 0; l < kDeformationLanes; ++l) {
+    const Stencil<2>& st = stencil[std::min(l, n - 1)];
+    const std::array<double, 3>&w0 = st.w[0], &d0 = st.dw[0];
+    const __m512d w0x2 = _mm512_set_pd(0.0, 0.0, w0[2], w0[2], w0[1], w0[1], w0[0], w0[0]);
+    const __m512d d0x2 = _mm512_set_pd(0.0, 0.0, d0[2], d0[2], d0[1], d0[1], d0[0], d0[0]);
+    const Index base = st.first[0] + st.first[1] * row_stride;
+    __m128d col0 = _mm_setzero_pd(), col1 = _mm_setzero_pd();
+    for (int j = 0; j < 3; ++j) {
+      const __m512d v = _mm512_maskz_loadu_pd(six, vg[base + j * row_stride].data());
+      const __m512d gx = _mm512_mul_pd(d0x2, _mm512_set1_pd(st.w[1][j]));
+      const __m512d gy = _mm512_mul_pd(_mm512_set1_pd(st.dw[1][j]), w0x2);
+      const __m512d c0 = _mm512_mul_pd(v, gx), c1 = _mm512_mul_pd(v, gy);
+      for (int i = 0; i < 3; ++i) {
+        col0 = _mm_add_pd(col0, node_pair(c0, i));
+        col1 = _mm_add_pd(col1, node_pair(c1, i));
+      }
+    }
+    out.l00[l] = col0[0], out.l10[l] = col0[1], out.l01[l] = col1[0], out.l11[l] = col1[1];
+  }
+}
+
 }  // namespace
+
+std::vector<LaneVariant<VelocityGradientLanesFunction>> velocity_gradient_lanes_variants() {
+  // No AVX2 or SSE2 rows: those machines run the scalar reference.
+  return lane_variants<VelocityGradientLanesFunction>(velocity_gradient_scalar, velocity_gradient_scalar,
+                                                      velocity_gradient_avx512);
+}
+
+void velocity_gradient_lanes(DeformationLanes& lanes, const Stencil<2>* stencil, int n, const Vec<2>* grid_velocity,
+                             Index row_stride) {
+  static const VelocityGradientLanesFunction chosen = choose_lane_variant(velocity_gradient_lanes_variants());
+  chosen(lanes, stencil, n, grid_velocity, row_stride);
+}
 
 std::vector<LaneVariant<DeformationLanesFunction>> deformation_lanes_variants() {
   return lane_variants<DeformationLanesFunction>(advance_deformation_sse2, advance_deformation_avx2,

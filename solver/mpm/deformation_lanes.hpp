@@ -4,8 +4,15 @@
 // point in vector instructions, by the scalar function's arithmetic, so the bits are
 // its. In a particle-by-particle loop each division sat in the chain between the
 // grid's velocities and the next stage.
+// The velocity gradient that drives it, L = Σ v_I ⊗ ∇S_I over a 3 × 3 stencil, is
+// gathered into the lanes a stencil row (three nodes' x, y) per instruction, the nodes
+// summed in the scalar loop's order (Simulation<2>::velocity_gradient), so its bits too.
 // verification/unit/mpm/deformation_lanes_test.cpp compares the lanes with the scalar code.
+#include <vector>
+
+#include "solver/core/types.hpp"
 #include "solver/mpm/lane_variant.hpp"
+#include "solver/mpm/shape_function.hpp"
 
 namespace pdmpm::mpm {
 
@@ -22,5 +29,14 @@ void advance_deformation_lanes(DeformationLanes& lanes, double dt);
 
 using DeformationLanesFunction = void (*)(DeformationLanes&, double);
 std::vector<LaneVariant<DeformationLanesFunction>> deformation_lanes_variants();
+
+// l00 … l11 of lane l from stencil[min(l, n − 1)] (3 × 3 nodes; a last group of fewer
+// than eight repeats its last particle) and the nodes' velocities; row_stride = nodes
+// per grid row.
+void velocity_gradient_lanes(DeformationLanes& lanes, const Stencil<2>* stencil, int n, const Vec<2>* grid_velocity,
+                             Index row_stride);
+
+using VelocityGradientLanesFunction = void (*)(DeformationLanes&, const Stencil<2>*, int, const Vec<2>*, Index);
+std::vector<LaneVariant<VelocityGradientLanesFunction>> velocity_gradient_lanes_variants();
 
 }  // namespace pdmpm::mpm

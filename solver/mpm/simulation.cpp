@@ -15,6 +15,7 @@
 #include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/kinematics.hpp"
+#include "solver/mpm/lane_copy.hpp"
 #include "solver/mpm/nonlocal.hpp"
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/plane_stress_lanes.hpp"
@@ -220,37 +221,43 @@ void Simulation<D>::compute_stencils() {
 }
 
 // GIMP stencils eight particles at a time (gimp_lanes.hpp); a last group of fewer
-// repeats its last particle in the unused lanes.
+// repeats its last particle in the unused lanes. Each group's positions and half-widths
+// are gathered a group ahead (for_each_group_gathered_ahead).
 template <int D>
 void Simulation<D>::compute_gimp_stencils(Index& bad) {
   const std::vector<Index>& order = schedule_.order();
   const Index na = static_cast<Index>(order.size());
   const Index groups = (na + kGimpLanes - 1) / kGimpLanes;
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
-  for (Index gi = 0; gi < groups; ++gi) {
+  struct Inputs {
+    double x_rel[D][kGimpLanes], lp[D][kGimpLanes];  // [axis][lane]
+  };
+  auto gather = [&](Index gi, Inputs& in) {
     const Index k0 = gi * kGimpLanes;
-    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)  // the next group's particles
+    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)  // the group after it
       prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
-    std::array<Vec<D>, kGimpLanes> x_rel, lp;
     for (int l = 0; l < kGimpLanes; ++l) {
       const Index p = order[std::min(k0 + l, na - 1)];
-      x_rel[l] = particles_.position(p) - grid_.node0;
-      lp[l] = state_.half_width[p];
+      const Vec<D> x = particles_.position(p) - grid_.node0;
+      for (int a = 0; a < D; ++a) in.x_rel[a][l] = x[a], in.lp[a][l] = state_.half_width[p][a];
     }
+  };
+  auto compute = [&](Index gi, const Inputs& in) {
+    const Index k0 = gi * kGimpLanes;
     for (int a = 0; a < D; ++a) {
-      double xa[kGimpLanes], la[kGimpLanes];
-      for (int l = 0; l < kGimpLanes; ++l) xa[l] = x_rel[l][a], la[l] = lp[l][a];
       GimpLanes lanes;
-      gimp_lanes(xa, la, grid_.h, lanes);
+      gimp_lanes(in.x_rel[a], in.lp[a], grid_.h, lanes);
       for (int l = 0; l < kGimpLanes && k0 + l < na; ++l) {
         Stencil<D>& st = stencil_[k0 + l];
         st.first[a] = lanes.first[l];
         for (int n = 0; n < 3; ++n) st.w[a][n] = lanes.w[n][l], st.dw[a][n] = lanes.dw[n][l];
       }
     }
+    Index group_bad = kNoParticle;
     for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)
-      if (!inside_grid(stencil_[k])) bad = std::min(bad, order[k]);
-  }
+      if (!inside_grid(stencil_[k])) group_bad = std::min(group_bad, order[k]);
+    return group_bad;
+  };
+  bad = std::min(bad, for_each_group_gathered_ahead<Inputs>(groups, na >= kParallelMin, gather, compute));
 }
 
 template <int D>
@@ -383,12 +390,21 @@ void Simulation<D>::update_nonlocal() {
 }
 
 // L = Σ v_I ⊗ ∇S_I of the particle at k in the schedule from the grid velocity vg.
+// Summed in scalars, L(a, b) += v_a g_b node by node — the bits of L += v_I ∇S_Iᵀ, whose
+// Eigen form stored ∇S in 8-byte pieces and read it back in 16-byte ones (a store-
+// forwarding stall per node: in 3D a third of the step).
 template <int D>
 Mat<D> Simulation<D>::velocity_gradient(Index k, const std::vector<Vec<D>>& vg) const {
-  Mat<D> L = Mat<D>::Zero();
-  for_each_grid_node<D>(stencil_[k], K_, grid_.stride,
-                        [&](Index node, double, const Vec<D>& g) { L += vg[node] * g.transpose(); });
-  return L;
+  double L[D][D] = {};
+  for_each_grid_node<D>(stencil_[k], K_, grid_.stride, [&](Index node, double, const Vec<D>& g) {
+    const Vec<D>& v = vg[node];
+    for (int a = 0; a < D; ++a)
+      for (int b = 0; b < D; ++b) L[a][b] += v[a] * g[b];
+  });
+  Mat<D> out;
+  for (int a = 0; a < D; ++a)
+    for (int b = 0; b < D; ++b) out(a, b) = L[a][b];
+  return out;
 }
 
 // uGIMP half-widths of particle p that follow its stretch (gimp_domain = "stretch").
@@ -464,48 +480,64 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 // The plane-stress laws in one pass of groups of eight particles in the schedule's
 // order: F, the polar decompositions (polar_lanes.hpp), the law's elastic path
 // (plane_stress_lanes.hpp); the lanes those flag go through polar_log<2> and the
-// law point by point. Nothing is stored between the stages.
+// law point by point. Nothing is stored between the stages. Each group's inputs (L, F,
+// the plastic state) are gathered a group ahead (for_each_group_gathered_ahead) and
+// each stage hands its lanes to the next as vectors (lane_copy.hpp).
 template <int D>
 void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double dt, const PlaneStressLaw& law,
                                            Index& bad) {
   if constexpr (D == 2) {
-    static_assert(kPolarLanes == kLawLanes && kDeformationLanes == kLawLanes);
+    static_assert(kPolarLanes == kLawLanes && kDeformationLanes == kLawLanes && kCopyLanes == kLawLanes);
     const std::vector<Index>& order = schedule_.order();
     const Index na = static_cast<Index>(order.size());
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
     const Index groups = (na + kLawLanes - 1) / kLawLanes;
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
-    for (Index gi = 0; gi < groups; ++gi) {
+    struct Inputs {
+      DeformationLanes def;  // L and F
+      PlaneStressLanes law;  // the plastic state (the strain and rotation come from the decomposition)
+    };
+    auto gather = [&](Index gi, Inputs& in) {
       const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
-      for (Index k = k0; k < k0 + n; ++k)  // the next group's
+      for (Index k = k0; k < k0 + n; ++k)  // the group after it
         prefetch_ahead(order, k, state_.F, state_.history, state_.kirchhoff, state_.J, state_.out_of_plane_strain,
                        state_.energy, state_.dissipation, state_.failed);
-      DeformationLanes def;
+      DeformationLanes& def = in.def;
+      if (rows()) velocity_gradient_lanes(def, stencil_.data() + k0, static_cast<int>(n), vg.data(), grid_.stride[1]);
       for (int l = 0; l < kLawLanes; ++l) {
-        const Index k = k0 + std::min<Index>(l, n - 1);
-        const Mat<2> L = velocity_gradient(k, vg), &F = state_.F[order[k]];
-        def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
+        const Index k = k0 + std::min<Index>(l, n - 1), p = order[k];
+        if (!rows()) {  // 2 × 2 stencils (linear)
+          const Mat<2> L = velocity_gradient(k, vg);
+          def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
+        }
+        const Mat<2>& F = state_.F[p];
         def.f00[l] = F(0, 0), def.f01[l] = F(0, 1), def.f10[l] = F(1, 0), def.f11[l] = F(1, 1);
+        const PointHistory& hist = state_.history[p];
+        set_plastic_lane(in.law, l, hist.plastic_strain, elastic_only);
+        in.law.alpha[l] = hist.eq_plastic_strain + hardening_offset(p, hist.eq_plastic_strain);
       }
+    };
+    auto compute = [&](Index gi, Inputs& in) {
+      const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
+      Index group_bad = kNoParticle;
+      DeformationLanes& def = in.def;
       advance_deformation_lanes(def, dt);
       PolarLanes polar;
-      for (int l = 0; l < kLawLanes; ++l) {
-        polar.f00[l] = def.f00[l], polar.f10[l] = def.f10[l], polar.f01[l] = def.f01[l], polar.f11[l] = def.f11[l];
-        if (l >= n) continue;
+      const LaneCopy to_polar[] = {
+          {polar.f00, def.f00}, {polar.f10, def.f10}, {polar.f01, def.f01}, {polar.f11, def.f11}};
+      copy_lanes(to_polar, 4);
+      for (int l = 0; l < n; ++l) {
         const Index p = order[k0 + l];
         state_.F[p] << def.f00[l], def.f01[l], def.f10[l], def.f11[l];
         stretch_domain(p);
       }
       const unsigned polar_by_point = polar_log_lanes(polar);
-      PlaneStressLanes lanes;
-      for (int l = 0; l < kLawLanes; ++l) {
-        const Index p = order[k0 + std::min<Index>(l, n - 1)];
-        const PointHistory& hist = state_.history[p];
-        lanes.l00[l] = polar.l00[l], lanes.l01[l] = polar.l01[l], lanes.l11[l] = polar.l11[l];
-        lanes.c[l] = polar.c[l], lanes.s[l] = polar.s[l];
-        set_plastic_lane(lanes, l, hist.plastic_strain, elastic_only);
-        lanes.alpha[l] = hist.eq_plastic_strain + hardening_offset(p, hist.eq_plastic_strain);
-      }
+      PlaneStressLanes& lanes = in.law;
+      const LaneCopy to_law[] = {{lanes.l00, polar.l00},
+                                 {lanes.l01, polar.l01},
+                                 {lanes.l11, polar.l11},
+                                 {lanes.c, polar.c},
+                                 {lanes.s, polar.s}};
+      copy_lanes(to_law, 5);
       const unsigned law_by_point = plane_stress_lanes(law, lanes);
       for (int l = 0; l < n; ++l) {
         const Index p = order[k0 + l];
@@ -516,14 +548,14 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
             try {
               pl = polar_log<2>(state_.F[p]);
             } catch (const RunError&) {
-              bad = std::min(bad, p);
+              group_bad = std::min(group_bad, p);
               continue;
             }
           } else {
             pl.R << polar.c[l], -polar.s[l], polar.s[l], polar.c[l];
             pl.log_U << polar.l00[l], polar.l01[l], polar.l01[l], polar.l11[l];
           }
-          if (!apply_law(p, &pl)) bad = std::min(bad, p);
+          if (!apply_law(p, &pl)) group_bad = std::min(group_bad, p);
           continue;
         }
         const double alpha_before = state_.history[p].eq_plastic_strain;
@@ -538,7 +570,9 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         store_law_result(p, r, alpha_before, hardening_offset(p, alpha_before));
       }
       for (int l = 0; l < n; ++l) keep_tau_in_order(k0 + l, order[k0 + l]);
-    }
+      return group_bad;
+    };
+    bad = std::min(bad, for_each_group_gathered_ahead<Inputs>(groups, na >= kParallelMin, gather, compute));
   } else {
     (void)vg, (void)dt, (void)law, (void)bad;
   }
@@ -616,26 +650,30 @@ void Simulation<D>::polar_decompositions(Index& bad) {
     }
   } else {
     const Index groups = (na + kPolarLanes - 1) / kPolarLanes;
-#pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
-    for (Index gi = 0; gi < groups; ++gi) {
+    auto gather = [&](Index gi, PolarLanes& lanes) {  // a group ahead (for_each_group_gathered_ahead)
       const Index k0 = gi * kPolarLanes, n = std::min<Index>(kPolarLanes, na - k0);
-      for (Index k = k0; k < k0 + n; ++k) prefetch_ahead(order, k, state_.F, state_.failed);  // the next group's
-      PolarLanes lanes;
+      for (Index k = k0; k < k0 + n; ++k) prefetch_ahead(order, k, state_.F, state_.failed);  // the group after it
       for (int l = 0; l < kPolarLanes; ++l) {
         const Mat<D>& F = state_.F[order[k0 + std::min<Index>(l, n - 1)]];
         lanes.f00[l] = F(0, 0), lanes.f10[l] = F(1, 0), lanes.f01[l] = F(0, 1), lanes.f11[l] = F(1, 1);
       }
+    };
+    auto compute = [&](Index gi, PolarLanes& lanes) {
+      const Index k0 = gi * kPolarLanes, n = std::min<Index>(kPolarLanes, na - k0);
+      Index group_bad = kNoParticle;
       const unsigned scalar = polar_log_lanes(lanes);
       for (int l = 0; l < n; ++l) {
         const Index k = k0 + l;
         if (scalar >> l & 1u) {
-          if (!decompose(k)) bad = std::min(bad, order[k]);
+          if (!decompose(k)) group_bad = std::min(group_bad, order[k]);
         } else if (!state_.failed[order[k]]) {
           polar_[k].R << lanes.c[l], -lanes.s[l], lanes.s[l], lanes.c[l];
           polar_[k].log_U << lanes.l00[l], lanes.l01[l], lanes.l01[l], lanes.l11[l];
         }
       }
-    }
+      return group_bad;
+    };
+    bad = std::min(bad, for_each_group_gathered_ahead<PolarLanes>(groups, na >= kParallelMin, gather, compute));
   }
 }
 

@@ -1,6 +1,8 @@
 // The eight-lane deformation update is cayley_increment<2>(L, Δt) F bit for bit, in
 // every instruction set's version: random velocity gradients from rest to strain
-// increments of 10 % per step, random F around a rotation, signed zeros.
+// increments of 10 % per step, random F around a rotation, signed zeros. The velocity
+// gradient gathered into the lanes is Σ v_I ⊗ ∇S_I summed node by node, bit for bit,
+// for uGIMP and B-spline stencils and a last group of fewer than eight particles.
 #include "solver/mpm/deformation_lanes.hpp"
 
 #include <gtest/gtest.h>
@@ -8,8 +10,10 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include "solver/mpm/kinematics.hpp"
+#include "solver/mpm/shape_function.hpp"
 #include "verification/support/same_bits.hpp"
 
 namespace pdmpm::mpm {
@@ -46,6 +50,38 @@ TEST(DeformationLanes, EqualTheScalarCayleyUpdateBitForBit) {
       }
     }
   EXPECT_EQ(differing, 0) << "of " << compared;
+}
+
+TEST(DeformationLanes, VelocityGradientIsTheNodeByNodeSumBitForBit) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, 9.0);
+  const int nodes = 12;
+  std::vector<Vec<2>> vg;
+  for (int i = 0; i < nodes * nodes; ++i) vg.emplace_back(u(rng), u(rng));
+  vg[30] = Vec<2>(-0.0, 0.0);
+  const IVec<2> stride(1, nodes);
+  int differing = 0, compared = 0;
+  for (const ShapeFunction shape : {ShapeFunction::gimp, ShapeFunction::bspline2})
+    for (int group = 0; group < 200; ++group) {
+      std::vector<Stencil<2>> st;
+      for (int l = 0; l < kDeformationLanes; ++l)
+        st.push_back(make_stencil<2>(shape, Vec<2>(inside(rng), inside(rng)), 1.0, Vec<2>::Constant(0.25)));
+      const int n = group % 3 == 0 ? 1 + group % kDeformationLanes : kDeformationLanes;
+      for (const auto& variant : velocity_gradient_lanes_variants()) {
+        DeformationLanes out;
+        variant.function(out, st.data(), n, vg.data(), nodes);
+        for (int l = 0; l < kDeformationLanes; ++l) {
+          Mat<2> L = Mat<2>::Zero();  // Simulation<2>::velocity_gradient's sum
+          for_each_grid_node<2, 3>(st[std::min(l, n - 1)], stride,
+                                   [&](Index node, double, const Vec<2>& g) { L += vg[node] * g.transpose(); });
+          differing += !(same_bits(L(0, 0), out.l00[l]) && same_bits(L(0, 1), out.l01[l]) &&
+                         same_bits(L(1, 0), out.l10[l]) && same_bits(L(1, 1), out.l11[l]));
+          ++compared;
+        }
+      }
+    }
+  EXPECT_EQ(differing, 0) << "of " << compared;
+  EXPECT_EQ(compared, 2 * 200 * kDeformationLanes * static_cast<int>(velocity_gradient_lanes_variants().size()));
 }
 
 }  // namespace
