@@ -42,6 +42,7 @@ struct BoundarySpec {
   std::vector<std::string> value;  // per component; "free" leaves it unconstrained
   double layer = 0.0;              // traction: loaded layer thickness (0 → Δx)
   std::string callback;            // analytic
+  bool moving = false;             // velocity, MPM grid: the node box travels with the grip
   std::map<std::string, double> parameters;
 };
 

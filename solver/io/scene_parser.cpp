@@ -301,6 +301,14 @@ void read_boundaries(const TomlReader& root, Scene& s) {
     } else if (b.has("callback") || b.has("parameters")) {
       b.fail(b.has("callback") ? "callback" : "parameters", "only for kind = \"analytic\"");
     }
+    if (b.has("moving")) {
+      if (spec.kind != BoundaryKind::velocity) b.fail("moving", "only for kind = \"velocity\"");
+      if (s.method == Method::pd)
+        b.fail("moving",
+               "only for MPM and hybrid scenes (it moves the grid-node box; a PD boundary holds its particles "
+               "wherever they go)");
+      spec.moving = b.boolean("moving", false);
+    }
     b.finish();
     s.boundaries.push_back(std::move(spec));
   }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "solver/mpm/lanes.hpp"
+#include "solver/mpm/stencil_row.hpp"
 
 namespace pdmpm::mpm {
 
@@ -51,18 +52,6 @@ void velocity_gradient_scalar(DeformationLanes& out, const Stencil<2>* stencil, 
     for_each_grid_node<2, 3>(stencil[std::min(l, n - 1)], stride,
                              [&](Index node, double, const Vec<2>& g) { L += vg[node] * g.transpose(); });
     out.l00[l] = L(0, 0), out.l01[l] = L(0, 1), out.l10[l] = L(1, 0), out.l11[l] = L(1, 1);
-  }
-}
-
-// Lanes 2i, 2i + 1 of a stencil row hold node i's x, y (as g2p_rows reads them).
-__attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m512d row, int i) {
-  switch (i) {
-    case 0:
-      return __builtin_shufflevector(row, row, 0, 1);
-    case 1:
-      return __builtin_shufflevector(row, row, 2, 3);
-    default:
-      return __builtin_shufflevector(row, row, 4, 5);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include "solver/mpm/parallel.hpp"
+#include "solver/mpm/stencil_row.hpp"
 
 namespace pdmpm::mpm {
 
@@ -35,18 +36,6 @@ bool g2p_rows_scalar(const G2PArrays2& a, G2PParameters q, Index k_begin, Index 
     }
   }
   return finite;
-}
-
-// Node i's x, y of a stencil row (lanes 2i, 2i + 1).
-__attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m512d row, int i) {
-  switch (i) {
-    case 0:
-      return __builtin_shufflevector(row, row, 0, 1);
-    case 1:
-      return __builtin_shufflevector(row, row, 2, 3);
-    default:
-      return __builtin_shufflevector(row, row, 4, 5);
-  }
 }
 
 __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2PParameters q, Index k_begin,

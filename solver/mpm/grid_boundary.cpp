@@ -1,5 +1,6 @@
 #include "solver/mpm/grid_boundary.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace pdmpm::mpm {
@@ -19,10 +20,12 @@ Vec<D> reflect(Vec<D> v, int axis) {
 }  // namespace
 
 template <int D>
-GridBoundary<D>::GridBoundary(const std::vector<GridBc<D>>& bcs, const Grid<D>& grid) : bcs_(bcs) {
+GridBoundary<D>::GridBoundary(const std::vector<GridBc<D>>& bcs, const Grid<D>& grid)
+    : bcs_(bcs), node0_(grid.node0), h_(grid.h), n_(grid.n) {
   nodes_.resize(bcs.size());
   positions_.resize(bcs.size());
-  const double tol = 1e-9 * grid.h;
+  weight_.resize(bcs.size());
+  offset_.assign(bcs.size(), Vec<D>::Zero());
   for (std::size_t b = 0; b < bcs.size(); ++b) {
     const GridBc<D>& bc = bcs[b];
     if (bc.kind == BcKind::symmetry) {
@@ -46,16 +49,64 @@ GridBoundary<D>::GridBoundary(const std::vector<GridBc<D>>& bcs, const Grid<D>& 
       plane_nodes_.push_back({std::move(on_plane), a});
       continue;
     }
-    for (Index i = 0; i < grid.size(); ++i) {
-      const Vec<D> x = grid.position(i);
-      bool inside = true;
-      for (int a = 0; a < D; ++a) inside = inside && x[a] >= bc.min[a] - tol && x[a] <= bc.max[a] + tol;
-      if (inside) {
-        nodes_[b].push_back(i);
-        positions_[b].push_back(x);
+    collect_nodes(b);
+  }
+}
+
+template <int D>
+void GridBoundary<D>::collect_nodes(std::size_t b) {
+  const GridBc<D>& bc = bcs_[b];
+  const double tol = 1e-9 * h_;
+  const Vec<D> lo = bc.min + offset_[b], hi = bc.max + offset_[b];
+  const bool moving = bc.moving && bc.kind == BcKind::velocity;
+  nodes_[b].clear();
+  positions_[b].clear();
+  weight_[b].clear();
+  IVec<D> k = IVec<D>::Zero();
+  const Index size = n_.prod();
+  for (Index i = 0; i < size; ++i) {
+    const Vec<D> x = node0_ + h_ * k.template cast<double>();  // Grid::position(i)
+    bool inside = true;
+    double w = 1.0;
+    for (int a = 0; a < D; ++a) {
+      if (moving && bc.components[a]) {  // faces it moves across: the hold ramps over a cell
+        w *= std::clamp((x[a] - lo[a]) / h_ + 0.5, 0.0, 1.0) * std::clamp((hi[a] - x[a]) / h_ + 0.5, 0.0, 1.0);
+        inside = inside && w > 1e-9;  // a face on a node lets it go (round-off of the travel aside)
+      } else {
+        inside = inside && x[a] >= lo[a] - tol && x[a] <= hi[a] + tol;
       }
     }
+    if (inside) {
+      nodes_[b].push_back(i);
+      positions_[b].push_back(x);
+      if (moving) weight_[b].push_back(w);
+    }
+    for (int a = 0; a < D && ++k[a] == n_[a]; ++a) k[a] = 0;  // x fastest, as the node index
   }
+}
+
+template <int D>
+void GridBoundary<D>::advance(double t, double dt) {
+  for (std::size_t b = 0; b < bcs_.size(); ++b) {
+    const GridBc<D>& bc = bcs_[b];
+    if (!bc.moving || bc.kind != BcKind::velocity) continue;
+    auto velocity = [&](double time) {
+      const Vec<D> centre = 0.5 * (bc.min + bc.max) + offset_[b];
+      const Vec<D> v = bc.velocity_field ? bc.velocity_field(centre, time) : bc.velocity;
+      Vec<D> out = Vec<D>::Zero();
+      for (int a = 0; a < D; ++a)
+        if (bc.components[a]) out[a] = ramp(time, bc.ramp_time) * v[a];
+      return out;
+    };
+    offset_[b] += 0.5 * dt * (velocity(t) + velocity(t + dt));
+    collect_nodes(b);
+  }
+}
+
+template <int D>
+void GridBoundary<D>::refresh() {
+  for (std::size_t b = 0; b < bcs_.size(); ++b)
+    if (bcs_[b].kind != BcKind::symmetry) collect_nodes(b);
 }
 
 template <int D>
@@ -109,8 +160,14 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
           break;
         case BcKind::velocity: {
           const Vec<D> target = prescribed(b, n, t);
-          for (int a = 0; a < D; ++a)
-            if (bc.components[a]) v[i][a] = r * target[a];
+          if (weight_[b].empty()) {
+            for (int a = 0; a < D; ++a)
+              if (bc.components[a]) v[i][a] = r * target[a];
+          } else {
+            const double w = weight_[b][n];
+            for (int a = 0; a < D; ++a)
+              if (bc.components[a]) v[i][a] = w * (r * target[a]) + (1.0 - w) * v[i][a];
+          }
         } break;
         case BcKind::symmetry:
           break;
@@ -136,8 +193,9 @@ double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t)
     for (std::size_t n = 0; n < nodes_[b].size(); ++n) {
       const Index i = nodes_[b][n];
       const Vec<D> target = prescribed(b, n, t);
+      const double w = weight_[b].empty() ? 1.0 : weight_[b][n];  // the held share of the node
       for (int a = 0; a < D; ++a)
-        if (bc.components[a]) power -= real_share(i) * f[i][a] * r * target[a];
+        if (bc.components[a]) power -= w * real_share(i) * f[i][a] * r * target[a];
     }
   }
   return power;

@@ -35,6 +35,18 @@ class GridBoundary {
   void constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr, double dt = 0.0,
                  std::vector<Vec<D>>* reactions = nullptr) const;
 
+  // Moves the boxes of the moving velocity constraints from t to t + dt by their
+  // prescribed velocity at the box centre (trapezoid rule: exact for a constant speed
+  // and a linear ramp) and re-collects their nodes. Call at the end of each step.
+  // A moving box holds a node with weight w, v ← w v_prescribed + (1 − w) v, w falling
+  // from 1 to 0 over the cell centred on each face it moves across: a node is let go
+  // over the box's travel of one cell, not at once (which jolted the grip's load).
+  void advance(double t, double dt);
+  // Displacement of each constraint's box since t = 0 (zero unless it moves); for
+  // checkpoints, with refresh() after it is restored.
+  std::vector<Vec<D>>& box_offsets() { return offset_; }
+  void refresh();
+
   // Power of the velocity constraints at time t against nodal forces f (the reaction
   // −f on each constrained component, times the prescribed velocity; real share only).
   double constraint_power(const std::vector<Vec<D>>& f, double t) const;
@@ -54,13 +66,20 @@ class GridBoundary {
   };
   // Velocity of velocity bc b at its n-th node and time t, before the ramp.
   Vec<D> prescribed(std::size_t b, std::size_t n, double t) const;
+  // The nodes (and their positions) of bc b's box displaced by offset_[b].
+  void collect_nodes(std::size_t b);
 
   std::vector<GridBc<D>> bcs_;
   std::vector<std::vector<Index>> nodes_;                        // per velocity-type bc: constrained nodes
   std::vector<std::vector<Vec<D>>> positions_;                   // per bc: positions of its nodes
+  std::vector<std::vector<double>> weight_;                      // per moving bc: each node's hold w ∈ (0, 1]
   std::vector<std::vector<MirrorPair>> pairs_;                   // per symmetry plane, applied in order
   std::vector<std::pair<std::vector<Index>, int>> plane_nodes_;  // per symmetry plane: nodes on it, axis
   std::vector<double> share_;                                    // real_share per node (empty: all 1)
+  std::vector<Vec<D>> offset_;                                   // per bc: its box's displacement
+  Vec<D> node0_ = Vec<D>::Zero();                                // the grid's nodes: node0 + k h, k < n
+  double h_ = 1.0;
+  IVec<D> n_ = IVec<D>::Ones();
 };
 
 }  // namespace pdmpm::mpm

@@ -713,6 +713,7 @@ void Simulation<D>::step(double dt) {
   refresh_active();
   newly_failed_.clear();
   if (active_.empty()) {
+    boundary_.advance(time_, dt);
     time_ += dt;
     ++steps_;
     return;
@@ -757,6 +758,7 @@ void Simulation<D>::step(double dt) {
 
   for (Index p : active_)
     if (failed_this_step_[p]) newly_failed_.push_back(p);
+  boundary_.advance(t, dt);  // moving grips carry their node boxes to tⁿ⁺¹
   time_ += dt;
   ++steps_;
 }
@@ -1012,6 +1014,8 @@ void Simulation<D>::checkpoint(core::StateArchive& a) {
   a.sync("mpm/external_work", external_work_);
   a.sync("mpm/boundary_work", boundary_work_);
   a.sync("mpm/damping_work", damping_work_);
+  a.sync("mpm/grip_box_offsets", boundary_.box_offsets());
+  boundary_.refresh();
 }
 
 template class Simulation<1>;

@@ -68,6 +68,7 @@ void add_boundary(const io::Scene& s, std::size_t index, MpmGridSettings<D>& out
       g.kind = mpm::BcKind::fixed;
     } else {
       g.kind = mpm::BcKind::velocity;
+      g.moving = b.moving;
       const auto value = parse_components<D>(b);
       for (int a = 0; a < D; ++a) g.components[a] = value[a] != nullptr;
       g.velocity_field = [value](const Vec<D>& x, double time) {

@@ -154,6 +154,8 @@ CASES = {
     "mpm_yield_without_j2": ("material.yield_stress | only for constitutive", mpm("density = 2500", "density = 2500\nyield_stress = 1e8")),
     "mpm_failure_without_j2": ("material.failure | needs constitutive", MPM_BASE + "\n[material.failure]\nd0 = 0.5\nc = -1.5\n"),
     "mpm_unknown_shape_function": ("mpm.shape_function | cubic", MPM_BASE + '\n[mpm]\nshape_function = "cubic"\n'),
+    "mpm_moving_fixed_boundary": ("boundary[0].moving | only for kind = \"velocity\"", mpm('kind = "fixed"', 'kind = "fixed"\nmoving = true')),
+    "moving_boundary_for_pd": ("boundary[0].moving | only for MPM and hybrid scenes", replace('kind = "fixed"', 'kind = "velocity"\nvalue = [0.1, "free"]\nmoving = true')),
     "mpm_cfl_above_one": ("time.safety_factor | CFL number", mpm("end_time = 1e-6", "end_time = 1e-6\nsafety_factor = 1.5")),
     "mpm_influence": ("model.influence | only for the peridynamic models", mpm('type = "mpm"', 'type = "mpm"\ninfluence = "constant"')),
     "mpm_table_for_pd": ("mpm | only for model type", BASE + '\n[mpm]\nshape_function = "gimp"\n'),

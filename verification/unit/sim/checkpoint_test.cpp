@@ -177,6 +177,7 @@ name = "right"
 kind = "velocity"
 region = { type = "box", min = [0.0195, -1], max = [1, 1] }
 value = ["20", "free"]
+moving = true   # the box's travel is state a resume must restore
 [output]
 every = 25
 fields = ["displacement", "velocity", "stress", "eq_plastic_strain"]
