@@ -214,11 +214,11 @@ template <int D>
 void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
   auto& p = pd_.particles();
   auto& sys = pd_.system();
-  bool changed = false;
+  std::vector<Index> changed;
   for (Index i = 0; i < p.n_real; ++i) {
     const ParticleKind was = before[i], now = p.kind[i];
     if (was == now) continue;
-    changed = true;
+    changed.push_back(i);
     if (now == ParticleKind::removed) continue;
     if (now == ParticleKind::pd) {
       to_pd<D>(mpm_, sys, pd_.model(), i);
@@ -228,8 +228,8 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
       ++events_.to_mpm;
     }
   }
-  if (!changed) return;
-  pd_.refresh_kinds();
+  if (changed.empty()) return;
+  pd_.refresh_kinds(changed);
   mpm_.refresh_active();
 }
 

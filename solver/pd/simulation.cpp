@@ -12,7 +12,16 @@ Simulation<D>::Simulation(System<D>& system, Model<D>& model, const Forcing<D>& 
 
 template <int D>
 void Simulation<D>::refresh_kinds() {
-  const auto changed = sys_.refresh_activity();
+  after_activity(sys_.refresh_activity());
+}
+
+template <int D>
+void Simulation<D>::refresh_kinds(const std::vector<Index>& kind_changed) {
+  after_activity(sys_.refresh_activity(kind_changed));
+}
+
+template <int D>
+void Simulation<D>::after_activity(const std::vector<Index>& changed) {
   if (!changed.empty()) model_.refresh(sys_, changed);
   const auto& p = sys_.particles;
   movers_.clear();

@@ -55,9 +55,16 @@ class Simulation {
 
   // After particle kinds changed: which bonds are live, the owner and mover
   // lists, and the model's per-particle constants of the particles concerned.
-  // Broken bonds stay broken.
+  // Broken bonds stay broken. With `kind_changed` (the real particles whose kind
+  // changed, when that is all that did) only their bonds and their neighbours' are
+  // re-derived; the result is the same.
   void refresh_kinds();
+  void refresh_kinds(const std::vector<Index>& kind_changed);
 
+ private:
+  void after_activity(const std::vector<Index>& changed);  // the model's constants, the mover list
+
+ public:
   // External force density b at time (or load factor) t: body force, tractions, indenter.
   void external_forces(double t);
   // Internal force density f (model + contact) of the owners, breaking bonds if

@@ -82,20 +82,41 @@ struct System {
 
   // Re-derives every bond's inactive bit and the owner list from the kinds;
   // returns the real particles whose set of active bonds changed.
-  std::vector<Index> refresh_activity() {
+  std::vector<Index> refresh_activity() { return refresh_activity_of(nullptr); }
+
+  // The same when only the real particles in `kind_changed` changed kind: a bond's
+  // activity depends on its two ends' kinds, so only their bonds and their neighbours'
+  // are re-derived (families are symmetric), with the same result as the full pass
+  // — which a hybrid paid over the whole body at every conversion. A body with ghosts
+  // (periodic images) takes the full pass.
+  std::vector<Index> refresh_activity(const std::vector<Index>& kind_changed) {
+    if (particles.n_ghost() > 0) return refresh_activity();
+    std::vector<std::uint8_t> near(static_cast<std::size_t>(particles.n_real), 0);
+    for (const Index i : kind_changed) {
+      near[i] = 1;
+      for (BondIndex b = families.begin(i); b < families.end(i); ++b) near[families.neighbor[b]] = 1;
+    }
+    return refresh_activity_of(&near);
+  }
+
+ private:
+  // The full pass over every real particle's bonds, or only over those flagged in `only`.
+  std::vector<Index> refresh_activity_of(const std::vector<std::uint8_t>* only) {
     const Index n = particles.n_real;
     std::vector<Index> changed;
     owners.clear();
     bool all_pd = true;
     for (Index i = 0; i < n; ++i) {
       const auto ki = particles.kind[i];
-      bool moved = false;
-      for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
-        const bool active = bond_active(ki, kind(families.neighbor[b]));
-        moved = moved || active != !(bonds.flags.trial[b] & kBondInactive);
-        bonds.set_active(b, active);
+      if (!only || (*only)[i]) {
+        bool moved = false;
+        for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
+          const bool active = bond_active(ki, kind(families.neighbor[b]));
+          moved = moved || active != !(bonds.flags.trial[b] & kBondInactive);
+          bonds.set_active(b, active);
+        }
+        if (moved) changed.push_back(i);
       }
-      if (moved) changed.push_back(i);
       if (pd_like(ki)) owners.push_back(i);
       all_pd = all_pd && ki == core::ParticleKind::pd;
     }
@@ -103,6 +124,7 @@ struct System {
     return changed;
   }
 
+ public:
   // Calls fn(b, j, k) — bond index, neighbour, stencil offset — for every bond
   // of particle i in the set (pd/bond_state.hpp): live (intact, both ends
   // PD-like) or the reference family (active, not cut before the run).

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <random>
 
 #include <fmt/format.h>
 
@@ -222,6 +223,42 @@ TEST(BondState, RejectRestoresAndAcceptKeeps) {
   sim.accept();
   sim.reject();
   EXPECT_EQ(setup.system.bonds.flags.trial, after);
+}
+
+// Re-deriving only the bonds of the particles whose kind changed, and their neighbours',
+// gives what the full pass gives — the bond flags, the particles whose active bonds
+// changed, the owner list — over a sequence of random kind changes (PD, transition,
+// MPM, removed), as a hybrid makes them at every conversion.
+TEST(MixedBody, RefreshOfTheChangedKindsEqualsTheFullPass) {
+  const auto scene = plate("lps");
+  auto full = sim::build_pd<2>(scene);
+  auto part = sim::build_pd<2>(scene);
+  const Index n = full.system.particles.n_real;
+  ASSERT_EQ(full.system.particles.n_ghost(), 0);
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<Index> pick(0, n - 1);
+  std::uniform_int_distribution<int> kind(0, 3);
+  const ParticleKind kinds[] = {ParticleKind::pd, ParticleKind::transition, ParticleKind::mpm, ParticleKind::removed};
+  std::size_t refreshed = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::vector<Index> changed;
+    const int count = 1 + round % 7;
+    for (int c = 0; c < count; ++c) {
+      const Index i = pick(rng);
+      const ParticleKind k = kinds[kind(rng)];
+      if (full.system.particles.kind[i] == k || std::find(changed.begin(), changed.end(), i) != changed.end()) continue;
+      full.system.particles.kind[i] = part.system.particles.kind[i] = k;
+      changed.push_back(i);
+    }
+    std::sort(changed.begin(), changed.end());
+    const auto a = full.system.refresh_activity();
+    const auto b = part.system.refresh_activity(changed);
+    EXPECT_EQ(a, b) << "round " << round;
+    EXPECT_EQ(full.system.owners, part.system.owners) << "round " << round;
+    EXPECT_TRUE(full.system.bonds.flags.trial == part.system.bonds.flags.trial) << "round " << round;
+    refreshed += a.size();
+  }
+  EXPECT_GT(refreshed, 100u) << "the changes must change bonds, or nothing is compared";
 }
 
 }  // namespace
