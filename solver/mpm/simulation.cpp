@@ -10,6 +10,7 @@
 
 #include "solver/core/error.hpp"
 #include "solver/mpm/deformation_lanes.hpp"
+#include "solver/mpm/ductile_lanes.hpp"
 #include "solver/mpm/deterministic_sum.hpp"
 #include "solver/mpm/g2p_rows.hpp"
 #include "solver/mpm/gimp_lanes.hpp"
@@ -31,12 +32,20 @@ bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == 
 
 // A plastic flow the lanes returned into the point's history, as the scalar law adds
 // it (Δε_p is 3×3: its zero entries add +0 too).
+// Element by element, as += of the increment as a matrix (zeros elsewhere) adds.
 void add_plastic_increment(PointHistory& h, const PlaneStressLanes& lanes, int l) {
-  Mat<3> d = Mat<3>::Zero();
-  d(0, 0) = lanes.d00[l], d(1, 1) = lanes.d11[l], d(2, 2) = lanes.d22[l];
-  d(0, 1) = d(1, 0) = lanes.d01[l];
-  h.plastic_strain += d;
+  Mat<3>& e = h.plastic_strain;
+  e(0, 0) += lanes.d00[l], e(1, 1) += lanes.d11[l], e(2, 2) += lanes.d22[l];
+  e(0, 1) += lanes.d01[l], e(1, 0) += lanes.d01[l];
+  e(0, 2) += 0.0, e(1, 2) += 0.0, e(2, 0) += 0.0, e(2, 1) += 0.0;
   h.eq_plastic_strain += lanes.d_alpha[l];
+}
+
+// τ of plane stress (τ₃₃ and the out-of-plane shears zero) element by element.
+void store_plane_tau(Mat<3>& tau, double k00, double k01, double k10, double k11) {
+  tau(0, 0) = k00, tau(1, 0) = k10, tau(2, 0) = 0.0;
+  tau(0, 1) = k01, tau(1, 1) = k11, tau(2, 1) = 0.0;
+  tau(0, 2) = 0.0, tau(1, 2) = 0.0, tau(2, 2) = 0.0;
 }
 
 // Wall time between successive calls of lap().
@@ -516,6 +525,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         in.law.alpha[l] = hist.eq_plastic_strain + hardening_offset(p, hist.eq_plastic_strain);
       }
     };
+    const core::DuctileFailure& fail = settings_.failure;
     auto compute = [&](Index gi, Inputs& in) {
       const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
       Index group_bad = kNoParticle;
@@ -539,9 +549,14 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
                                  {lanes.s, polar.s}};
       copy_lanes(to_law, 5);
       const unsigned law_by_point = plane_stress_lanes(law, lanes);
+      double eps_f[kLawLanes];  // the ductile fracture strain of each lane
+      if (fail.enabled) fracture_strain_lanes(fail.d0, fail.c, lanes, eps_f);
       for (int l = 0; l < n; ++l) {
-        const Index p = order[k0 + l];
-        if (state_.failed[p]) continue;  // a failed particle carries no stress
+        const Index k = k0 + l, p = order[k];
+        if (state_.failed[p]) {  // a failed particle carries no stress
+          keep_tau_in_order(k, p);
+          continue;
+        }
         if (polar_by_point >> l & 1u || law_by_point >> l & 1u) {
           PolarLog<2> pl;
           if (polar_by_point >> l & 1u) {
@@ -556,20 +571,29 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
             pl.log_U << polar.l00[l], polar.l01[l], polar.l01[l], polar.l11[l];
           }
           if (!apply_law(p, &pl)) group_bad = std::min(group_bad, p);
+          keep_tau_in_order(k, p);
           continue;
         }
+        // store_law_result's stores, element by element from the lanes: a vector copy of
+        // a result assembled from scalar stores would wait for them (store forwarding).
         const double alpha_before = state_.history[p].eq_plastic_strain;
-        if (lanes.yielded >> l & 1u) add_plastic_increment(state_.history[p], lanes, l);
-        StressResult r;
-        r.kirchhoff(0, 0) = lanes.k00[l], r.kirchhoff(0, 1) = lanes.k01[l];
-        r.kirchhoff(1, 0) = lanes.k10[l], r.kirchhoff(1, 1) = lanes.k11[l];
-        r.J = lanes.J[l];
-        r.out_of_plane_strain = lanes.out_of_plane[l];
-        r.energy = lanes.energy[l];
-        r.dissipation = lanes.yielded >> l & 1u ? lanes.dissipation[l] : 0.0;
-        store_law_result(p, r, alpha_before, hardening_offset(p, alpha_before));
+        const bool yielded = lanes.yielded >> l & 1u;
+        if (yielded) add_plastic_increment(state_.history[p], lanes, l);
+        const double offset = hardening_offset(p, alpha_before);
+        store_plane_tau(state_.kirchhoff[p], lanes.k00[l], lanes.k01[l], lanes.k10[l], lanes.k11[l]);
+        state_.J[p] = lanes.J[l];
+        state_.out_of_plane_strain[p] = lanes.out_of_plane[l];
+        state_.energy[p] = lanes.energy[l];
+        state_.dissipation[p] += yielded ? lanes.dissipation[l] : 0.0;
+        if (fail.enabled) apply_ductile_criterion(p, alpha_before, offset, eps_f[l]);
+        if (rows()) {
+          Mat<2>& tau = tau_in_order_[k];
+          if (state_.failed[p])
+            tau.setZero();
+          else
+            tau << lanes.k00[l], lanes.k01[l], lanes.k10[l], lanes.k11[l];
+        }
       }
-      for (int l = 0; l < n; ++l) keep_tau_in_order(k0 + l, order[k0 + l]);
       return group_bad;
     };
     bad = std::min(bad, for_each_group_gathered_ahead<Inputs>(groups, na >= kParallelMin, gather, compute));
@@ -605,9 +629,19 @@ void Simulation<D>::store_law_result(Index p, const StressResult& r, double alph
   state_.energy[p] = r.energy;
   state_.dissipation[p] += r.dissipation;
   const core::DuctileFailure& fail = settings_.failure;
-  if (!fail.enabled) return;
+  if (fail.enabled)
+    apply_ductile_criterion(p, alpha_before, offset,
+                            fracture_strain(fail.d0, fail.c, mpm::triaxiality(state_.cauchy(p))));
+}
+
+// The ductile criterion of particle p, whose stress and ε̄_p the law just updated
+// (ε̄_p was alpha_before; offset as for store_law_result): fails it when its plastic
+// strain (rule "strain") or accumulated damage (rule "accumulated") reaches the
+// fracture strain eps_f of its triaxiality.
+template <int D>
+void Simulation<D>::apply_ductile_criterion(Index p, double alpha_before, double offset, double eps_f) {
+  const core::DuctileFailure& fail = settings_.failure;
   const double eps_p = state_.history[p].eq_plastic_strain;
-  const double eps_f = fracture_strain(fail.d0, fail.c, mpm::triaxiality(state_.cauchy(p)));
   bool broke = false;
   if (fail.rule == core::FailureRule::strain) {
     broke = eps_p + offset >= eps_f;

@@ -148,6 +148,7 @@ class Simulation {
   void stretch_domain(Index p);
   bool apply_law(Index p, const PolarLog<D>* polar);
   void store_law_result(Index p, const StressResult& r, double alpha_before, double offset);
+  void apply_ductile_criterion(Index p, double alpha_before, double offset, double eps_f);
   void update_nonlocal();
   // ε̂_p − ε̄_p of particle p with ε̄_p = eq_plastic: the non-local correction of the
   // hardening variable, zero for a local model (its ε̂_p is not kept up to date).

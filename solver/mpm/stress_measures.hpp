@@ -6,12 +6,23 @@
 
 namespace pdmpm::mpm {
 
-inline double mean_stress(const Mat<3>& s) { return s.trace() / 3.0; }
+// The sums below are written out in a fixed order — the one Eigen's reductions take in
+// the generic x86-64 build (trace: s₀₀ + (s₁₁ + s₂₂); s:s: pairs of the column-major
+// elements, then the ninth) — so every build gives the same bits, and the plane-stress
+// lanes (ductile_lanes.hpp) can repeat them.
+inline double mean_stress(const Mat<3>& s) { return (s(0, 0) + (s(1, 1) + s(2, 2))) / 3.0; }
 
 // σ_eq = sqrt(3/2 s:s), s = dev σ.
 inline double von_mises(const Mat<3>& s) {
-  const Mat<3> dev = s - mean_stress(s) * Mat<3>::Identity();
-  return std::sqrt(1.5 * (dev.array() * dev.array()).sum());
+  const double m = mean_stress(s);
+  double sq[9];  // column-major squares of dev σ = σ − m I
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) {
+      const double d = s(r, c) - m * (r == c ? 1.0 : 0.0);
+      sq[3 * c + r] = d * d;
+    }
+  const double even = (sq[0] + sq[2]) + (sq[4] + sq[6]), odd = (sq[1] + sq[3]) + (sq[5] + sq[7]);
+  return std::sqrt(1.5 * ((even + odd) + sq[8]));
 }
 
 // Stress triaxiality η = σ_m / σ_eq; 0 for a stress-free point, ±∞ never returned:
