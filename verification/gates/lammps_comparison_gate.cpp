@@ -8,7 +8,6 @@
 //  - LAMMPS' own example target (fast) and the Deryugin et al. 2023 disk (full) with bond
 //    breaking: broken-bond fractions within 10 %, damage maps side by side.
 #include <gtest/gtest.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -23,6 +22,7 @@
 #include "solver/time/velocity_verlet.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/lammps.hpp"
+#include "verification/support/thread_count.hpp"
 #include "verification/support/raster_image.hpp"
 
 namespace pdmpm {
@@ -46,15 +46,8 @@ struct OurRun {
   std::int64_t broken_sides = 0, sides = 0;
 };
 
-// One OpenMP thread, as LAMMPS runs here (one MPI rank, no OMP package).
-struct OneThread {
-  int before = omp_get_max_threads();
-  OneThread() { omp_set_num_threads(1); }
-  ~OneThread() { omp_set_num_threads(before); }
-};
-
 OurRun run_ours(const io::Scene& scene, std::int64_t steps, double dt) {
-  const OneThread one;
+  const test::ThreadCount one_thread(1);  // as LAMMPS runs here (one MPI rank, no OMP package)
   auto setup = sim::build_pd<3>(scene);
   auto state = sim::make_simulation(setup);
   time::VelocityVerlet<3> stepper(state, dt);
