@@ -62,9 +62,21 @@ void GridBoundary<D>::collect_nodes(std::size_t b) {
   nodes_[b].clear();
   positions_[b].clear();
   weight_[b].clear();
-  IVec<D> k = IVec<D>::Zero();
-  const Index size = n_.prod();
-  for (Index i = 0; i < size; ++i) {
+  // Only the nodes of the box's index range (a node of margin covers the tolerance and
+  // the moving box's one-cell hold ramp): a moving box is collected every step.
+  IVec<D> first, last;
+  Index count = 1;
+  for (int a = 0; a < D; ++a) {
+    const double top = static_cast<double>(n_[a] - 1);
+    const double from = std::floor((lo[a] - node0_[a]) / h_) - 1.0, to = std::ceil((hi[a] - node0_[a]) / h_) + 1.0;
+    first[a] = from > 0.0 ? static_cast<Index>(std::min(from, top)) : 0;  // NaN: the whole axis
+    last[a] = to < top ? static_cast<Index>(std::max(to, 0.0)) : n_[a] - 1;
+    count *= std::max<Index>(0, last[a] - first[a] + 1);
+  }
+  IVec<D> k = first;
+  for (Index visited = 0; visited < count; ++visited) {
+    Index i = 0;
+    for (int a = D - 1; a >= 0; --a) i = i * n_[a] + k[a];     // x fastest, as the node index
     const Vec<D> x = node0_ + h_ * k.template cast<double>();  // Grid::position(i)
     bool inside = true;
     double w = 1.0;
@@ -81,7 +93,7 @@ void GridBoundary<D>::collect_nodes(std::size_t b) {
       positions_[b].push_back(x);
       if (moving) weight_[b].push_back(w);
     }
-    for (int a = 0; a < D && ++k[a] == n_[a]; ++a) k[a] = 0;  // x fastest, as the node index
+    for (int a = 0; a < D && ++k[a] > last[a]; ++a) k[a] = first[a];
   }
 }
 
