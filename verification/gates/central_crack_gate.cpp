@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -89,6 +90,16 @@ void fronts(const std::vector<double>& phi, const core::Particles<2>& p, double 
 
 io::Scene central_crack_scene(const std::string& resolution, hybrid::Mode mode) {
   return io::parse_scene(test::scene_file("central_crack/" + resolution + "_" + std::string(name(mode)) + ".toml"));
+}
+
+// G_c = s_c² δ (6μ/π + 16(κ − 2μ)/(9π²)), the energy per unit crack area of the bonds the
+// critical stretch breaks in 2D state-based PD (Madenci & Oterkus 2014; κ the in-plane bulk
+// modulus; docs/verification/central_crack.md).
+double critical_stretch_energy(const io::Scene& scene) {
+  const core::Elastic& m = scene.material;
+  const double mu = m.shear(), kappa = m.bulk_2d(scene.setting), sc = scene.critical_stretch.value();
+  return sc * sc * scene.delta *
+      (6.0 * mu / std::numbers::pi + 16.0 * (kappa - 2.0 * mu) / (9.0 * std::numbers::pi * std::numbers::pi));
 }
 
 // J of the tip at `tip` growing along `direction`, over the ring 2δ–4δ (hybrid::j_samples:
@@ -476,6 +487,12 @@ TEST(FullCentralCrack, JIntegralOfTheThreeModes) {
     rows.push_back({std::string(name(kModes[m])), 1e3 * kGrip * r.t[ks], 1e-3 * 0.5 * (r.j_left[ks] + r.j_right[ks]),
                     100.0 * dev_start, 100.0 * dev_loading, 100.0 * per_sample, 100.0 * whole});
   }
+  {  // The fracture energy the critical stretch sets, as a line across the plot.
+    const double gc = 1e-3 * critical_stretch_energy(central_crack_scene("mid", hybrid::Mode::pd));
+    const double u_end = 1e3 * kGrip * pd.t[std::min(pd.t.size(), k0 + 4) - 1];
+    series.push_back(
+        {{"label", "G_c of the critical stretch"}, {"x", {0.0, u_end}}, {"y", {gc, gc}}, {"style", "dashed"}});
+  }
   test::record_data(kProblem, "08_j_integral",
                     {{"kind", "plot"},
                      {"title", "J-integral against each edge's displacement, three modes (Δx = 0.5 mm)"},
@@ -488,8 +505,9 @@ TEST(FullCentralCrack, JIntegralOfTheThreeModes) {
                       "Domain form over the ring 2δ–4δ around each crack front (deformation-theory W; every "
                       "particle through MPM's J2 law), to three samples past pure SBPD's crack start (the crack "
                       "then runs through the plate and the static form stops meaning J). The oscillation is the "
-                      "grips' waves (full speed from t = 0). The paper compares its J with Madenci & Oterkus' "
-                      "(not available here in numbers)."}});
+                      "grips' waves (full speed from t = 0). Dashed: the fracture energy G_c the critical stretch "
+                      "sets (2D LPS). The paper compares its J with Madenci & Oterkus' (not available here in "
+                      "numbers)."}});
   test::record_data(
       kProblem, "09_j_modes",
       {{"kind", "table"},
