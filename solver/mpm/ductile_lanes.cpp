@@ -26,7 +26,8 @@ __attribute__((always_inline)) inline void fracture_strain_lanes_by(double d0, d
     const d even = (dev00 * dev00 + off * off) + (dev11 * dev11 + off * off);
     const d odd = (dev10 * dev10 + dev01 * dev01) + (off * off + off * off);
     const d q = V::sqrt(1.5 * ((even + odd) + dev22 * dev22));
-    // triaxiality: 0 for a stress-free point, ±1e12 for a hydrostatic one.
+    // triaxiality: 0 for a stress-free point, ±1e12 for a hydrostatic one (which plane
+    // stress cannot reach; kept so each lane is the scalar function).
     d eta = mean / q;
     eta =
         V::select(q <= 1e-12 * V::select(mean < 0.0, -mean, mean), V::select(mean > 0.0, d{} + 1e12, d{} - 1e12), eta);

@@ -10,8 +10,8 @@
 
 #include "solver/core/error.hpp"
 #include "solver/mpm/deformation_lanes.hpp"
-#include "solver/mpm/ductile_lanes.hpp"
 #include "solver/mpm/deterministic_sum.hpp"
+#include "solver/mpm/ductile_lanes.hpp"
 #include "solver/mpm/g2p_rows.hpp"
 #include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/j2_plasticity.hpp"
@@ -30,9 +30,8 @@ namespace {
 
 bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == core::ParticleKind::transition; }
 
-// A plastic flow the lanes returned into the point's history, as the scalar law adds
-// it (Δε_p is 3×3: its zero entries add +0 too).
-// Element by element, as += of the increment as a matrix (zeros elsewhere) adds.
+// A plastic flow the lanes returned into the point's history, element by element as
+// the scalar law's matrix += adds it (Δε_p is 3×3: its zero entries add +0 too).
 void add_plastic_increment(PointHistory& h, const PlaneStressLanes& lanes, int l) {
   Mat<3>& e = h.plastic_strain;
   e(0, 0) += lanes.d00[l], e(1, 1) += lanes.d11[l], e(2, 2) += lanes.d22[l];

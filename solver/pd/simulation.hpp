@@ -61,10 +61,6 @@ class Simulation {
   void refresh_kinds();
   void refresh_kinds(const std::vector<Index>& kind_changed);
 
- private:
-  void after_activity(const std::vector<Index>& changed);  // the model's constants, the mover list
-
- public:
   // External force density b at time (or load factor) t: body force, tractions, indenter.
   void external_forces(double t);
   // Internal force density f (model + contact) of the owners, breaking bonds if
@@ -111,6 +107,8 @@ class Simulation {
   std::int64_t bond_evaluations() const { return bond_evaluations_; }
 
  private:
+  void after_activity(const std::vector<Index>& changed);  // the model's constants, the mover list
+
   System<D>& sys_;
   Model<D>& model_;
   Forcing<D> forcing_;

@@ -99,6 +99,20 @@ struct System {
     return refresh_activity_of(&near);
   }
 
+  // Calls fn(b, j, k) — bond index, neighbour, stencil offset — for every bond
+  // of particle i in the set (pd/bond_state.hpp): live (intact, both ends
+  // PD-like) or the reference family (active, not cut before the run).
+  template <class Fn>
+  void for_each_bond(Index i, BondSet set, Fn&& fn) const {
+    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
+      if (set == BondSet::live ? bonds.live(b) : bonds.in_reference_family(b))
+        fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
+  }
+  template <class Fn>
+  void for_each_live_bond(Index i, Fn&& fn) const {
+    for_each_bond(i, BondSet::live, fn);
+  }
+
  private:
   // The full pass over every real particle's bonds, or only over those flagged in `only`.
   std::vector<Index> refresh_activity_of(const std::vector<std::uint8_t>* only) {
@@ -122,21 +136,6 @@ struct System {
     }
     if (all_pd) owners.clear();
     return changed;
-  }
-
- public:
-  // Calls fn(b, j, k) — bond index, neighbour, stencil offset — for every bond
-  // of particle i in the set (pd/bond_state.hpp): live (intact, both ends
-  // PD-like) or the reference family (active, not cut before the run).
-  template <class Fn>
-  void for_each_bond(Index i, BondSet set, Fn&& fn) const {
-    for (BondIndex b = families.begin(i); b < families.end(i); ++b)
-      if (set == BondSet::live ? bonds.live(b) : bonds.in_reference_family(b))
-        fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
-  }
-  template <class Fn>
-  void for_each_live_bond(Index i, Fn&& fn) const {
-    for_each_bond(i, BondSet::live, fn);
   }
 };
 

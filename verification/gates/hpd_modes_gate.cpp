@@ -16,6 +16,7 @@
 #include "verification/support/gate.hpp"
 #include "verification/support/hpd_checkerboard.hpp"
 #include "verification/support/pd_fixtures.hpp"
+#include "verification/support/thread_count.hpp"
 
 namespace pdmpm {
 namespace {
@@ -128,15 +129,15 @@ json cost_row(const std::string& label, int sites, double ratio) {
   lps.initialise(sys);
   nd.initialise(sys);
   axial.initialise(axial_sys);
-  const int before = omp_get_max_threads();
-  omp_set_num_threads(1);
   std::vector<double> t_lps, t_nd, t_axial;
-  for (int r = 0; r < 7; ++r) {
-    t_lps.push_back(seconds_per_call(lps, sys, 20));
-    t_nd.push_back(seconds_per_call(nd, sys, 3));
-    t_axial.push_back(seconds_per_call(axial, axial_sys, 20));
+  {
+    const test::ThreadCount one_thread(1);
+    for (int r = 0; r < 7; ++r) {
+      t_lps.push_back(seconds_per_call(lps, sys, 20));
+      t_nd.push_back(seconds_per_call(nd, sys, 3));
+      t_axial.push_back(seconds_per_call(axial, axial_sys, 20));
+    }
   }
-  omp_set_num_threads(before);
   const auto r_nd = perf::ratio_of_medians(t_nd, t_lps), r_ax = perf::ratio_of_medians(t_axial, t_lps);
   const double sides = static_cast<double>(sys.families.n_bonds());
   const double slots = static_cast<double>(nd.sub_horizon().point.size());

@@ -32,7 +32,9 @@ namespace fs = std::filesystem;
 using nlohmann::json;
 const char* problem = "lammps_comparison";
 
-std::string scene_path(const std::string& name) { return std::string(PDMPM_SOURCE_DIR) + "/verification/scenes/" + name; }
+std::string scene_path(const std::string& name) {
+  return std::string(PDMPM_SOURCE_DIR) + "/verification/scenes/" + name;
+}
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -152,41 +154,73 @@ TEST(FastLammpsComparison, ElasticPmbDisplacementsAgree) {
   }
   const double rel_u = du / umax, rel_v = dv / vmax;
 
-  test::record_gate({.id = "lammps.elastic_pmb.families", .claim = "pdmpm and LAMMPS shall build the same bonds (bond sides) from the same particles",
-                     .measured = static_cast<double>(r.lmp.bonds), .expected = static_cast<double>(r.ours.sides), .tolerance = 0.0, .compare = test::Compare::abs,
-                     .tolerance_reason = "bond counts are integers: the families must be identical (|ξ| ≤ δ on the same lattice)",
-                     .source = "[parks2008]; LAMMPS fix_peri_neigh.cpp (partners within δ); docs/discretisation.md", .unit = "", .problem = problem});
+  test::record_gate(
+      {.id = "lammps.elastic_pmb.families",
+       .claim = "pdmpm and LAMMPS shall build the same bonds (bond sides) from the same particles",
+       .measured = static_cast<double>(r.lmp.bonds),
+       .expected = static_cast<double>(r.ours.sides),
+       .tolerance = 0.0,
+       .compare = test::Compare::abs,
+       .tolerance_reason = "bond counts are integers: the families must be identical (|ξ| ≤ δ on the same lattice)",
+       .source = "[parks2008]; LAMMPS fix_peri_neigh.cpp (partners within δ); docs/discretisation.md",
+       .unit = "",
+       .problem = problem});
   test::record_gate({.id = "lammps.elastic_pmb.displacement",
-                     .claim = "the displacement fields of pdmpm and LAMMPS (peri/pmb) shall agree at every particle to 1e-6 of the largest displacement after 300 steps of an elastic indentation",
-                     .measured = rel_u, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
-                     .tolerance_reason = "same model, partial-volume rule, contact rule, indenter law and velocity-Verlet integrator: only round-off differs (LAMMPS stores positions x, pdmpm displacements u; summation orders differ), ~1e-12 relative per step",
-                     .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp", .unit = "", .problem = problem});
-  test::record_gate({.id = "lammps.elastic_pmb.displacement_per_particle",
-                     .claim = "at every particle whose displacement exceeds 1e-3 of the largest, |u_pdmpm − u_LAMMPS| / |u_LAMMPS| shall "
-                     "be at most 1e-6",
-                     .measured = worst_particle, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
-                     .tolerance_reason = "as above; particles the wave has hardly reached (|u| below 1e-3 of the largest) are left out because "
-                     "there |u| itself is of the order of the round-off of the other particles",
-                     .source = "[parks2008]; [thompson2022] (LAMMPS side by side)", .unit = "", .problem = problem});
-  test::record_gate({.id = "lammps.elastic_pmb.velocity", .claim = "the velocity fields shall agree to 1e-6 of the largest velocity",
-                     .measured = rel_v, .expected = 1e-6, .tolerance = 0.0, .compare = test::Compare::at_most,
-                     .tolerance_reason = "as for the displacements: the same integrator in exact arithmetic", .source = "[parks2008]; [thompson2022] (LAMMPS side by side)", .unit = "", .problem = problem});
+                     .claim = "the displacement fields of pdmpm and LAMMPS (peri/pmb) shall agree at every particle to "
+                              "1e-6 of the largest displacement after 300 steps of an elastic indentation",
+                     .measured = rel_u,
+                     .expected = 1e-6,
+                     .tolerance = 0.0,
+                     .compare = test::Compare::at_most,
+                     .tolerance_reason = "same model, partial-volume rule, contact rule, indenter law and "
+                                         "velocity-Verlet integrator: only round-off differs (LAMMPS stores positions "
+                                         "x, pdmpm displacements u; summation orders differ), ~1e-12 relative per step",
+                     .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp, fix_nve.cpp, fix_indent.cpp",
+                     .unit = "",
+                     .problem = problem});
+  test::record_gate(
+      {.id = "lammps.elastic_pmb.displacement_per_particle",
+       .claim =
+           "at every particle whose displacement exceeds 1e-3 of the largest, |u_pdmpm − u_LAMMPS| / |u_LAMMPS| shall "
+           "be at most 1e-6",
+       .measured = worst_particle,
+       .expected = 1e-6,
+       .tolerance = 0.0,
+       .compare = test::Compare::at_most,
+       .tolerance_reason =
+           "as above; particles the wave has hardly reached (|u| below 1e-3 of the largest) are left out because "
+           "there |u| itself is of the order of the round-off of the other particles",
+       .source = "[parks2008]; [thompson2022] (LAMMPS side by side)",
+       .unit = "",
+       .problem = problem});
+  test::record_gate({.id = "lammps.elastic_pmb.velocity",
+                     .claim = "the velocity fields shall agree to 1e-6 of the largest velocity",
+                     .measured = rel_v,
+                     .expected = 1e-6,
+                     .tolerance = 0.0,
+                     .compare = test::Compare::at_most,
+                     .tolerance_reason = "as for the displacements: the same integrator in exact arithmetic",
+                     .source = "[parks2008]; [thompson2022] (LAMMPS side by side)",
+                     .unit = "",
+                     .problem = problem});
   test::record_data(problem, "01_elastic",
                     {{"kind", "table"},
                      {"title", "core::Elastic PMB indentation: pdmpm vs LAMMPS (disk_impact_elastic.toml)"},
                      {"columns", {"quantity", "value"}},
-                     {"rows", json::array({json::array({"particles", p.n_real}), json::array({"steps", steps}),
-                                           json::array({"bond sides (pdmpm / LAMMPS)",
-                                                        std::to_string(r.ours.sides) + " / " + std::to_string(r.lmp.bonds)}),
-                                           json::array({"max |u| [m]", umax}), json::array({"max |Δu| / max |u|", rel_u}),
-                                           json::array({"max per particle |Δu|/|u| (|u| > 1e-3 max)", worst_particle}),
-                                           json::array({"max |Δv| / max |v|", rel_v}),
-                                           json::array({"pdmpm particle-steps/s (1 thread, median of 3)", r.ours_rate}),
-                                           json::array({"LAMMPS particle-steps/s (1 thread, median of 3)", r.lmp_rate}),
-                                           json::array({"pdmpm / LAMMPS speed", r.ours_rate / r.lmp_rate}),
-                                           json::array({"LAMMPS version", r.lmp.version})})},
-                     {"caption", "Both runs in one process run, alternating three times; times are the time-step loops only "
-                                 "(LAMMPS: its Loop time). Δ = pdmpm − LAMMPS."}});
+                     {"rows",
+                      json::array({json::array({"particles", p.n_real}), json::array({"steps", steps}),
+                                   json::array({"bond sides (pdmpm / LAMMPS)",
+                                                std::to_string(r.ours.sides) + " / " + std::to_string(r.lmp.bonds)}),
+                                   json::array({"max |u| [m]", umax}), json::array({"max |Δu| / max |u|", rel_u}),
+                                   json::array({"max per particle |Δu|/|u| (|u| > 1e-3 max)", worst_particle}),
+                                   json::array({"max |Δv| / max |v|", rel_v}),
+                                   json::array({"pdmpm particle-steps/s (1 thread, median of 3)", r.ours_rate}),
+                                   json::array({"LAMMPS particle-steps/s (1 thread, median of 3)", r.lmp_rate}),
+                                   json::array({"pdmpm / LAMMPS speed", r.ours_rate / r.lmp_rate}),
+                                   json::array({"LAMMPS version", r.lmp.version})})},
+                     {"caption",
+                      "Both runs in one process run, alternating three times; times are the time-step loops only "
+                      "(LAMMPS: its Loop time). Δ = pdmpm − LAMMPS."}});
 }
 
 // Broken-bond fractions and damage maps of both codes for one breaking scene.
@@ -206,16 +240,25 @@ void compare_breaking(const std::string& scene_file, const std::string& tag, int
   const auto& last = r.lmp.frames.back();
   const double sides = static_cast<double>(r.ours.sides);
   const double ours = static_cast<double>(r.ours.broken_sides) / sides;
-  const double lmp = static_cast<double>(test::lammps::broken_sides_from_damage(last.damage, setup.system.families)) / sides;
+  const double lmp =
+      static_cast<double>(test::lammps::broken_sides_from_damage(last.damage, setup.system.families)) / sides;
   // For information: pdmpm with its own bond-break timing (a bond at s ≥ s₀ breaks before it acts).
   auto own_rule = scene;
   own_rule.break_after_force = false;
   const double ours_default = static_cast<double>(run_ours(own_rule, steps, dt).broken_sides) / sides;
-  test::record_gate({.id = gate_id, .claim = "the broken-bond fraction of pdmpm shall be within 10 % of LAMMPS' on " + label, .measured = ours, .expected = lmp, .tolerance = 0.10,
-                     .compare = test::Compare::rel,
-                     .tolerance_reason = "same model and input (LAMMPS' bond-break timing and contact rule taken by the scene); fragmentation "
-                     "is chaotic, so round-off may make the bond-by-bond pattern diverge (issue 5 sets 10 %)",
-                     .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp", .unit = "", .problem = problem});
+  test::record_gate(
+      {.id = gate_id,
+       .claim = "the broken-bond fraction of pdmpm shall be within 10 % of LAMMPS' on " + label,
+       .measured = ours,
+       .expected = lmp,
+       .tolerance = 0.10,
+       .compare = test::Compare::rel,
+       .tolerance_reason =
+           "same model and input (LAMMPS' bond-break timing and contact rule taken by the scene); fragmentation "
+           "is chaotic, so round-off may make the bond-by-bond pattern diverge (issue 5 sets 10 %)",
+       .source = "[parks2008]; [thompson2022]; LAMMPS pair_peri_pmb.cpp",
+       .unit = "",
+       .problem = problem});
   record_maps(tag + "_damage", label + ": damage φ, pdmpm (left) and LAMMPS (right)", setup, r.ours.damage, last.damage,
               normal, layer, ppc,
               "One lattice layer at the end of the run; colour: φ from 0 (dark blue) to 1 (dark red). Same particles, "
@@ -223,19 +266,21 @@ void compare_breaking(const std::string& scene_file, const std::string& tag, int
   int differ = 0;
   for (std::size_t i = 0; i < last.damage.size(); ++i) differ += std::abs(last.damage[i] - r.ours.damage[i]) > 1e-9;
   const std::string timing = "particle-steps/s (1 thread, median of " + std::to_string(reps) + ")";
-  test::record_data(problem, tag + "_table",
-                    {{"kind", "table"},
-                     {"title", label + ": pdmpm vs LAMMPS"},
-                     {"columns", {"quantity", "pdmpm", "LAMMPS"}},
-                     {"rows", json::array({json::array({"particles", setup.system.particles.n_real, setup.system.particles.n_real}),
-                                           json::array({"steps", steps, last.step}),
-                                           json::array({"broken-bond fraction", ours, lmp}),
-                                           json::array({"broken-bond fraction, pdmpm's default break timing", ours_default, nullptr}),
-                                           json::array({"particles whose φ differs by > 1e-9", differ, nullptr}),
-                                           json::array({timing, r.ours_rate, r.lmp_rate})})},
-                     {"caption", "Times: the time-step loops only, both codes alternating in one process run. The default "
-                                 "pdmpm rule breaks a bond at s ≥ s₀ before it acts; LAMMPS lets it act once more and breaks "
-                                 "it at s > s₀ — at this time step that alone changes the broken fraction by the amount shown."}});
+  test::record_data(
+      problem, tag + "_table",
+      {{"kind", "table"},
+       {"title", label + ": pdmpm vs LAMMPS"},
+       {"columns", {"quantity", "pdmpm", "LAMMPS"}},
+       {"rows",
+        json::array({json::array({"particles", setup.system.particles.n_real, setup.system.particles.n_real}),
+                     json::array({"steps", steps, last.step}), json::array({"broken-bond fraction", ours, lmp}),
+                     json::array({"broken-bond fraction, pdmpm's default break timing", ours_default, nullptr}),
+                     json::array({"particles whose φ differs by > 1e-9", differ, nullptr}),
+                     json::array({timing, r.ours_rate, r.lmp_rate})})},
+       {"caption",
+        "Times: the time-step loops only, both codes alternating in one process run. The default "
+        "pdmpm rule breaks a bond at s ≥ s₀ before it acts; LAMMPS lets it act once more and breaks "
+        "it at s > s₀ — at this time step that alone changes the broken fraction by the amount shown."}});
 }
 
 TEST(FastLammpsComparison, LammpsExampleTargetBrokenBondFraction) {

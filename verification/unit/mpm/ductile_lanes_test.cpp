@@ -1,7 +1,8 @@
 // The eight-lane ductile fracture strain is fracture_strain(d₀, c, triaxiality(τ / J))
 // bit for bit in every lane, for every instruction set: random plane-stress states
-// over the stress range of metals, and the special states triaxiality treats apart
-// (stress-free, hydrostatic, signed zeros, a non-finite stress).
+// over the stress range of metals, and special states (stress-free, signed zeros,
+// subnormal, non-finite, J = 0). Triaxiality's hydrostatic branch cannot be reached in
+// plane stress (σ₃₃ = 0 keeps σ_eq ≥ |σ_m|), so no case aims at it.
 #include "solver/mpm/ductile_lanes.hpp"
 
 #include <gtest/gtest.h>
@@ -72,9 +73,9 @@ TEST(DuctileLanes, EqualTheScalarCriterionOnSpecialStates) {
       {nan, 0.0, 0.0, 1e8, 1.0},                // not a number
       {1e8, 1e8, 1e8, 1e8, 0.0},                // J = 0
       {-0.0, 0.0, 0.0, -0.0, 1.0},              // σ_m = −0
-      {2e8, -1e8, -1e8, 2e8, 1.0},              //
+      {2e8, -1e8, -1e8, 2e8, 1.0},              // biaxial with shear
       {1e9, 1e9, -1e9, 1e9, 1.1},               // τ not symmetric
-      {-7e8, 3e8, 3e8, -7e8, 0.95},             //
+      {-7e8, 3e8, 3e8, -7e8, 0.95},             // biaxial compression with shear
       {1e8, 0.0, 0.0, 1e8 * (1 + 1e-15), 1.0},  // nearly equibiaxial
   };
   EXPECT_EQ(differing(points, 0.8, -1.5), 0);
