@@ -10,7 +10,7 @@ namespace {
 
 template <int W>
 __attribute__((always_inline)) inline void fracture_strain_lanes_by(double d0, double c, const PlaneStressLanes& in,
-                                                                    double* out) {
+                                                                    unsigned needed, double* out) {
   using V = Lanes<W>;
   using d = typename V::d;
   for (int c0 = 0; c0 < kLawLanes; c0 += W) {
@@ -33,21 +33,21 @@ __attribute__((always_inline)) inline void fracture_strain_lanes_by(double d0, d
         V::select(q <= 1e-12 * V::select(mean < 0.0, -mean, mean), V::select(mean > 0.0, d{} + 1e12, d{} - 1e12), eta);
     eta = V::select((q == 0.0) & (mean == 0.0), d{} + 0.0, eta);
     double e[W];
-    for (int i = 0; i < W; ++i) e[i] = d0 * std::exp(c * eta[i]);
+    for (int i = 0; i < W; ++i) e[i] = needed >> (c0 + i) & 1u ? d0 * std::exp(c * eta[i]) : d0;
     V::store(out + c0, V::load(e));
   }
 }
 
-void fracture_strain_lanes_sse2(double d0, double c, const PlaneStressLanes& in, double* out) {
-  fracture_strain_lanes_by<2>(d0, c, in, out);
+void fracture_strain_lanes_sse2(double d0, double c, const PlaneStressLanes& in, unsigned needed, double* out) {
+  fracture_strain_lanes_by<2>(d0, c, in, needed, out);
 }
 __attribute__((target("avx2"))) void fracture_strain_lanes_avx2(double d0, double c, const PlaneStressLanes& in,
-                                                                double* out) {
-  fracture_strain_lanes_by<4>(d0, c, in, out);
+                                                                unsigned needed, double* out) {
+  fracture_strain_lanes_by<4>(d0, c, in, needed, out);
 }
 __attribute__((target("avx512f"))) void fracture_strain_lanes_avx512(double d0, double c, const PlaneStressLanes& in,
-                                                                     double* out) {
-  fracture_strain_lanes_by<8>(d0, c, in, out);
+                                                                     unsigned needed, double* out) {
+  fracture_strain_lanes_by<8>(d0, c, in, needed, out);
 }
 
 }  // namespace
@@ -57,9 +57,19 @@ std::vector<LaneVariant<FractureStrainLanesFunction>> fracture_strain_lanes_vari
                                                     fracture_strain_lanes_avx512);
 }
 
-void fracture_strain_lanes(double d0, double c, const PlaneStressLanes& law_out, double* fracture_strain) {
+unsigned lanes_needing_fracture_strain(const core::DuctileFailure& rule, const PlaneStressLanes& law, int n) {
+  const unsigned all = n >= 32 ? ~0u : (1u << n) - 1u;
+  if (std::abs(rule.c) * (2.0 / 3.0) > 700.0) return all;  // e^{cη} may round to zero
+  if (rule.rule == core::FailureRule::accumulated) return law.yielded & all;
+  unsigned strained = 0;
+  for (int l = 0; l < n; ++l) strained |= static_cast<unsigned>(law.alpha[l] > 0.0) << l;
+  return (law.yielded | strained) & all;
+}
+
+void fracture_strain_lanes(double d0, double c, const PlaneStressLanes& law_out, unsigned needed,
+                           double* fracture_strain) {
   static const FractureStrainLanesFunction chosen = choose_lane_variant(fracture_strain_lanes_variants());
-  chosen(d0, c, law_out, fracture_strain);
+  chosen(d0, c, law_out, needed, fracture_strain);
 }
 
 }  // namespace pdmpm::mpm

@@ -549,7 +549,8 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       copy_lanes(to_law, 5);
       const unsigned law_by_point = plane_stress_lanes(law, lanes);
       double eps_f[kLawLanes];  // the ductile fracture strain of each lane
-      if (fail.enabled) fracture_strain_lanes(fail.d0, fail.c, lanes, eps_f);
+      if (fail.enabled)
+        fracture_strain_lanes(fail.d0, fail.c, lanes, lanes_needing_fracture_strain(fail, lanes, n), eps_f);
       for (int l = 0; l < n; ++l) {
         const Index k = k0 + l, p = order[k];
         if (state_.failed[p]) {  // a failed particle carries no stress

@@ -50,6 +50,9 @@ class HybridRun {
   // bound: |grid external + boundary work| + Σ |work on held PD components and of
   // PD external forces|), for the instability test.
   double kinetic_ = 0.0, internal_ = 0.0, initial_energy_ = 0.0, pd_work_ = 0.0;
+  // The particles PD integrates in the step being taken (its movers at the start) and
+  // their u and v then.
+  std::vector<Index> moved_;
   std::vector<Vec<D>> u_before_, v_before_;
 };
 
@@ -128,22 +131,26 @@ void HybridRun<D>::state(core::StateArchive& a) {
 
 template <int D>
 void HybridRun<D>::step(bool energy) {
-  const Index n = p_.n_real;
-  u_before_.assign(p_.u.begin(), p_.u.begin() + n);
-  v_before_.assign(p_.v.begin(), p_.v.begin() + n);
-  h_.step(dt_, energy);
   // Work bound on the PD side (as time::VelocityVerlet books it, in absolute
   // values): held components take the reaction's work and the kinetic energy the
-  // support gives them, free ones the work of the external force density.
+  // support gives them, free ones the work of the external force density. Booked
+  // over the particles PD moves in this step: one converted during the step moved
+  // on the grid before (the grid's work book has it) or on PD (booked here).
+  moved_ = h_.pd().movers();
+  const auto n = static_cast<Index>(moved_.size());
+  u_before_.resize(moved_.size());
+  v_before_.resize(moved_.size());
+  for (Index k = 0; k < n; ++k) u_before_[k] = p_.u[moved_[k]], v_before_[k] = p_.v[moved_[k]];
+  h_.step(dt_, energy);
   const auto& bcs = h_.pd().boundaries();
   const double rho = scene_.material.rho;
   double dw = 0.0;
-  for (Index i = 0; i < n; ++i) {
-    if (p_.kind[i] != core::ParticleKind::pd) continue;
+  for (Index k = 0; k < n; ++k) {
+    const Index i = moved_[k];
     for (int a = 0; a < D; ++a) {
-      const double du = p_.u[i][a] - u_before_[i][a];
+      const double du = p_.u[i][a] - u_before_[k][a];
       if (bcs.constrained(i, a)) {
-        const double dv2 = p_.v[i][a] * p_.v[i][a] - v_before_[i][a] * v_before_[i][a];
+        const double dv2 = p_.v[i][a] * p_.v[i][a] - v_before_[k][a] * v_before_[k][a];
         dw += p_.volume[i] * (std::abs((p_.f[i][a] + p_.b[i][a]) * du) + 0.5 * rho * std::abs(dv2));
       } else {
         dw += p_.volume[i] * std::abs(p_.b[i][a] * du);

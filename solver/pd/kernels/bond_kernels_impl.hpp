@@ -34,6 +34,17 @@ struct GatherMode {
   static constexpr bool wide = Wide, uniform_volume = UniformVolume;
 };
 
+// Lanes of a block whose bond is intact and active (padding lanes excluded).
+inline m8 live_lanes(const FamilyView& fam, BondIndex b0, int count) {
+  return lanes_zero(fam.broken + b0) & (lane_ids < count);
+}
+
+// Whether a block has a live bond. A block without one adds nothing to any sum (every
+// kernel masks its lanes with `live`) and is skipped before its gather: in a hybrid a
+// transition particle's family is mostly bonds to other transition particles, which
+// belong to the grid (pd::bond_active), and a crack face's blocks are mostly broken.
+inline bool any_live(const FamilyView& fam, BondIndex b0, int count) { return any(live_lanes(fam, b0, count)); }
+
 // One block of up to eight bonds of particle i, gathered into lanes.
 template <int D>
 struct Block {
@@ -78,7 +89,7 @@ struct Block {
     else
       wv *= d8{volume[j[0]], volume[j[1]], volume[j[2]], volume[j[3]],
                volume[j[4]], volume[j[5]], volume[j[6]], volume[j[7]]};
-    live = lanes_zero(fam.broken + b0) & (lane_ids < count);
+    live = live_lanes(fam, b0, count);
   }
 };
 
@@ -96,6 +107,7 @@ __attribute__((always_inline)) inline void for_each_block(const Args& a, Index i
     const double* ui = a.u + D * i;
     for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
       const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+      if (!any_live(fam, b0, count)) continue;
       B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
       block(mode, b0, count);
     }
@@ -297,6 +309,8 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       d8 n2 = splat(0.0);
       for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
         const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
+        const m8 live = live_lanes(fam, b0, count);
+        if (!any(live)) continue;  // its row was not written (skipped above); no live ε is read from it
         const std::uint16_t* shape = fam.shape + b0;
         const Index* j = fam.neighbor + b0;
         const d8 L = per_offset(a.table.length, shape, count);
@@ -306,7 +320,6 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
         else
           wvc *= d8{a.volume[j[0]], a.volume[j[1]], a.volume[j[2]], a.volume[j[3]],
                     a.volume[j[4]], a.volume[j[5]], a.volume[j[6]], a.volume[j[7]]};
-        const m8 live = lanes_zero(fam.broken + b0) & (lane_ids < count);
         const d8 eps = load8(row + (b0 - begin)) - gt * L - load8(p.plastic_extension + b0);
         n2 += keep(live, wvc * eps * eps);
         __builtin_memcpy(row + (b0 - begin), &eps, sizeof eps);

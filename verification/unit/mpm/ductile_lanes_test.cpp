@@ -22,24 +22,27 @@ struct PlaneStressPoint {
   double k00, k01, k10, k11, J;
 };
 
-// Lanes differing from the scalar functions, over every version.
+// Lanes differing from the scalar functions, over every version; each group of eight
+// asks for a different set of lanes (`needed`), and a lane not asked for must hold d₀.
 int differing(const std::vector<PlaneStressPoint>& points, double d0, double c) {
   int n = 0;
   for (const auto& variant : fracture_strain_lanes_variants())
     for (std::size_t i0 = 0; i0 + kLawLanes <= points.size(); i0 += kLawLanes) {
+      const unsigned needed = i0 % (3 * kLawLanes) == 0 ? 0xffu : static_cast<unsigned>(i0 / kLawLanes * 37u) & 0xffu;
       PlaneStressLanes lanes;
       double strain[kLawLanes];
       for (int l = 0; l < kLawLanes; ++l) {
         const PlaneStressPoint& q = points[i0 + l];
         lanes.k00[l] = q.k00, lanes.k01[l] = q.k01, lanes.k10[l] = q.k10, lanes.k11[l] = q.k11, lanes.J[l] = q.J;
       }
-      variant.function(d0, c, lanes, strain);
+      variant.function(d0, c, lanes, needed, strain);
       for (int l = 0; l < kLawLanes; ++l) {
         const PlaneStressPoint& q = points[i0 + l];
         Mat<3> tau = Mat<3>::Zero();
         tau(0, 0) = q.k00, tau(0, 1) = q.k01, tau(1, 0) = q.k10, tau(1, 1) = q.k11;
         const Mat<3> sigma = tau / q.J;
-        n += !test::same_bits(fracture_strain(d0, c, triaxiality(sigma)), strain[l]);
+        const double expected = needed >> l & 1u ? fracture_strain(d0, c, triaxiality(sigma)) : d0;
+        n += !test::same_bits(expected, strain[l]);
       }
     }
   return n;
@@ -79,6 +82,25 @@ TEST(DuctileLanes, EqualTheScalarCriterionOnSpecialStates) {
       {1e8, 0.0, 0.0, 1e8 * (1 + 1e-15), 1.0},  // nearly equibiaxial
   };
   EXPECT_EQ(differing(points, 0.8, -1.5), 0);
+}
+
+// Which lanes need ε_f: those that flowed (both rules), and for the rule "strain" also
+// those with plastic strain (α = ε̄_p + offset > 0); all of them where e^{cη} may round to
+// zero; never a lane past n.
+TEST(DuctileLanes, OnlyPointsWhoseCriterionCanChangeNeedTheFractureStrain) {
+  PlaneStressLanes law;
+  for (int l = 0; l < kLawLanes; ++l) law.alpha[l] = l % 3 == 0 ? 0.0 : (l % 3 == 1 ? 0.02 : -0.01);
+  law.yielded = 0b10010001u;  // lanes 0, 4, 7
+  core::DuctileFailure rule;
+  rule.enabled = true, rule.d0 = 1.0, rule.c = -1.5;
+  rule.rule = core::FailureRule::accumulated;
+  EXPECT_EQ(lanes_needing_fracture_strain(rule, law, kLawLanes), 0b10010001u);
+  EXPECT_EQ(lanes_needing_fracture_strain(rule, law, 5), 0b00010001u);
+  rule.rule = core::FailureRule::strain;  // α > 0 in lanes 1, 4, 7
+  EXPECT_EQ(lanes_needing_fracture_strain(rule, law, kLawLanes), 0b10010011u);
+  rule.c = -2000.0;
+  EXPECT_EQ(lanes_needing_fracture_strain(rule, law, kLawLanes), 0xffu);
+  EXPECT_EQ(lanes_needing_fracture_strain(rule, law, 3), 0b111u);
 }
 
 }  // namespace
