@@ -108,7 +108,14 @@ pdmpm::test::CommandResult pdmpm_with_timeout(const std::string& args, int secon
   return pdmpm::test::run_command("timeout " + std::to_string(limit) + " " + PDMPM_BINARY_DIR + "/pdmpm " + args);
 }
 
-TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses) {
+// The 240 mutants are checked in four shards of 60, separate tests so that ctest runs
+// them side by side (under ci/sanitize.sh's instrumented pdmpm one test of all 240 took
+// five minutes, the longest of that tier). Each shard replays the mutator from the
+// start, so mutant n is the same whichever shard checks it.
+constexpr int kMutations = 240;  // say so in the README if you change it
+constexpr int kShards = 4;
+
+void fuzz_shard(int shard) {
   const fs::path src = PDMPM_SOURCE_DIR;
   // Small scenes (each builds in well under a second): the demos (also run) and
   // verification scenes covering symmetry planes, MPM, the hybrid and plasticity.
@@ -118,17 +125,19 @@ TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses) {
                                         src / "verification/scenes/mpm/plate_tension_j2.toml",
                                         src / "verification/scenes/hybrid/precracked_plate.toml",
                                         src / "verification/scenes/plastic_strip.toml"};
-  constexpr int kMutations = 240;  // ~1 minute on 2 cores; say so in the README if you change it
-  const pdmpm::test::ScratchDir scratch("scene_fuzz");
+  constexpr int per_shard = kMutations / kShards;
+  const int first = shard * per_shard, last = first + per_shard;
+  const pdmpm::test::ScratchDir scratch("scene_fuzz_" + std::to_string(shard));
   Mutator mutator(20261126);
   int checked = 0, ran = 0, valid = 0;
-  for (int n = 0; n < kMutations; ++n) {
+  for (int n = 0; n < last; ++n) {
     const bool demo = n % 3 == 0;
     const fs::path& seed = demo ? demos[static_cast<std::size_t>(n / 3) % demos.size()]
                                 : others[static_cast<std::size_t>(n) % others.size()];
     std::string what, what2;
     std::string text = mutator.mutate(pdmpm::test::read_text(seed), what);
     if (n % 2) text = mutator.mutate(text, what2), what += "; " + what2;
+    if (n < first) continue;  // an earlier shard's mutant: only the mutator's state matters
     const fs::path scene = scratch.path() / ("mutant" + std::to_string(n) + ".toml");
     std::ofstream(scene, std::ios::binary) << text;
     const std::string label = seed.filename().string() + " (" + what + ")";
@@ -151,9 +160,15 @@ TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses) {
     }
   }
   // The mix must exercise both answers, or the mutations are too weak or too strong.
-  EXPECT_GT(valid, kMutations / 20);
-  EXPECT_LT(valid, kMutations * 9 / 10);
-  std::cout << "scene fuzzer: " << checked << " checks, " << ran << " runs, " << valid << " mutants valid\n";
+  EXPECT_GT(valid, per_shard / 20);
+  EXPECT_LT(valid, per_shard * 9 / 10);
+  std::cout << "scene fuzzer, mutants " << first << "-" << last - 1 << ": " << checked << " checks, " << ran
+            << " runs, " << valid << " mutants valid\n";
 }
+
+TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses1) { fuzz_shard(0); }
+TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses2) { fuzz_shard(1); }
+TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses3) { fuzz_shard(2); }
+TEST(SceneFuzz, MutatedScenesGiveOnlyTheDocumentedExitStatuses4) { fuzz_shard(3); }
 
 }  // namespace
