@@ -160,6 +160,7 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
     const GridBc<D>& bc = bcs_[b];
     if (bc.kind == BcKind::symmetry) continue;
     const double r = ramp(t, bc.ramp_time);
+    const std::optional<Vec<D>> uniform = bc.kind == BcKind::velocity ? uniform_velocity(b, t) : std::nullopt;
     for (std::size_t n = 0; n < nodes_[b].size(); ++n) {
       const Index i = nodes_[b][n];
       const Vec<D> before = v[i];
@@ -171,7 +172,7 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
           v[i][bc.axis] = 0.0;
           break;
         case BcKind::velocity: {
-          const Vec<D> target = prescribed(b, n, t);
+          const Vec<D> target = prescribed(b, n, t, uniform);
           if (weight_[b].empty()) {
             for (int a = 0; a < D; ++a)
               if (bc.components[a]) v[i][a] = r * target[a];
@@ -190,9 +191,16 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
 }
 
 template <int D>
-Vec<D> GridBoundary<D>::prescribed(std::size_t b, std::size_t n, double t) const {
+std::optional<Vec<D>> GridBoundary<D>::uniform_velocity(std::size_t b, double t) const {
   const GridBc<D>& bc = bcs_[b];
-  return bc.velocity_field ? bc.velocity_field(positions_[b][n], t) : bc.velocity;
+  if (!bc.velocity_field) return bc.velocity;
+  if (bc.field_depends_on_position) return std::nullopt;
+  return bc.velocity_field(Vec<D>::Zero(), t);
+}
+
+template <int D>
+Vec<D> GridBoundary<D>::prescribed(std::size_t b, std::size_t n, double t, const std::optional<Vec<D>>& uniform) const {
+  return uniform ? *uniform : bcs_[b].velocity_field(positions_[b][n], t);
 }
 
 template <int D>
@@ -202,9 +210,10 @@ double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t)
     const GridBc<D>& bc = bcs_[b];
     if (bc.kind != BcKind::velocity) continue;  // fixed, roller and symmetry do no work
     const double r = ramp(t, bc.ramp_time);
+    const std::optional<Vec<D>> uniform = uniform_velocity(b, t);
     for (std::size_t n = 0; n < nodes_[b].size(); ++n) {
       const Index i = nodes_[b][n];
-      const Vec<D> target = prescribed(b, n, t);
+      const Vec<D> target = prescribed(b, n, t, uniform);
       const double w = weight_[b].empty() ? 1.0 : weight_[b][n];  // the held share of the node
       for (int a = 0; a < D; ++a)
         if (bc.components[a]) power -= w * real_share(i) * f[i][a] * r * target[a];

@@ -9,6 +9,7 @@
 // then copy their mirror's reflected values. GIMP and B-spline supports reach
 // past a body's edge, so this keeps them consistent where a plain velocity
 // constraint on the edge nodes would not.
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -64,8 +65,12 @@ class GridBoundary {
     Index outside, inside;
     int axis;
   };
-  // Velocity of velocity bc b at its n-th node and time t, before the ramp.
-  Vec<D> prescribed(std::size_t b, std::size_t n, double t) const;
+  // Velocity of velocity bc b at its n-th node and time t, before the ramp; `uniform`
+  // is uniform_velocity(b, t), taken instead when it holds a value.
+  Vec<D> prescribed(std::size_t b, std::size_t n, double t, const std::optional<Vec<D>>& uniform) const;
+  // Bc b's velocity at time t when it is the same at every node (a constant, or a field
+  // that does not depend on position), evaluated once; else nothing.
+  std::optional<Vec<D>> uniform_velocity(std::size_t b, double t) const;
   // The nodes (and their positions) of bc b's box displaced by offset_[b].
   void collect_nodes(std::size_t b);
 

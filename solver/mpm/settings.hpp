@@ -102,6 +102,9 @@ struct GridBc {
   // Instead of the constant, v(x, t) at the node position x (e.g. a scene expression);
   // only the `components` flagged are imposed. The ramp still applies.
   std::function<Vec<D>(const Vec<D>& x, double t)> velocity_field;
+  // false when velocity_field does not depend on x (a ramp in time, say): it is then
+  // evaluated once per bc and call instead of once per node.
+  bool field_depends_on_position = true;
   // "boundary[i].moving" (velocity only): the box travels with the prescribed velocity
   // (taken at its centre, prescribed components only), so the nodes it holds follow the
   // material it grips; false: a box fixed in space, which material enters as it moves.

@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
@@ -71,6 +72,8 @@ void add_boundary(const io::Scene& s, std::size_t index, MpmGridSettings<D>& out
       g.moving = b.moving;
       const auto value = parse_components<D>(b);
       for (int a = 0; a < D; ++a) g.components[a] = value[a] != nullptr;
+      g.field_depends_on_position =
+          std::any_of(value.begin(), value.end(), [](const auto& e) { return e && e->depends_on_position(); });
       g.velocity_field = [value](const Vec<D>& x, double time) {
         Vec<D> v = Vec<D>::Zero();
         for (int a = 0; a < D; ++a)

@@ -14,9 +14,11 @@
 #include <cmath>
 #include <limits>
 
+#include "benchmarks/perf/stats.hpp"
 #include "solver/io/scene.hpp"
 #include "verification/support/gate.hpp"
 #include "verification/support/scene_gate.hpp"
+#include "verification/support/thread_count.hpp"
 
 namespace pdmpm {
 namespace {
@@ -46,6 +48,7 @@ struct Curve {
   std::vector<double> t, e, S, kinetic, internal;
   double first_failure = std::numeric_limits<double>::infinity();
   double wall = 0.0;
+  Json summary;          // the run's summary.json (particle-steps and wall time per phase)
   std::size_t peak = 0;  // index of the maximum load
 };
 
@@ -62,6 +65,7 @@ Curve run_curve(const io::Scene& scene, const std::string& tag, bool mpm) {
   const auto run = test::run_for_gate(scene, kProblem, tag);
   Curve c;
   c.wall = run.summary.value("wall_time_s", 0.0);
+  c.summary = run.summary;
   c.t = run.history("time");
   const auto ul = run.history("probe_ext_left_ux"), ur = run.history("probe_ext_right_ux");
   const auto F = run.history("reaction_pulled_x");
@@ -343,6 +347,70 @@ TEST(FullDogbone, CurveQuasiStaticsAndConsidere) {
                          .source = "[considere1885]; docs/verification/dogbone.md",
                          .unit = "",
                          .problem = kProblem});
+}
+
+// Full tier: the paper's timing for the tensile test (its English abstract puts the "43 %"
+// here): the hybrid's three modes of the dog-bone in one process, interleaved, one thread,
+// to 5.6 ms — the fast tier's end, past the maximum load and before the MPM neck separates.
+// No particle reaches the ductile criterion by then at this resolution
+// (docs/verification/dogbone.md), so the adaptive modes run the grid alone: the table
+// measures what the grid saves over pure SBPD on the deformation before fracture, with
+// each mode's accuracy beside its time. Shown, not gated: the paper's savings include
+// its PD regions, which do not form here.
+constexpr int kDogboneTimingReps = 3;
+
+TEST(FullDogbone, TimingTableOfTheThreeModes) {
+  const test::ThreadCount one_thread(1);  // the table's claim; the full tier leaves OpenMP every core
+  const std::vector<std::string> modes{"pd", "expand", "expand_shrink"};
+  std::vector<std::vector<double>> wall(modes.size());
+  std::vector<Curve> last(modes.size());
+  io::Scene scene;
+  for (int rep = 0; rep < kDogboneTimingReps; ++rep)
+    for (std::size_t m = 0; m < modes.size(); ++m) {
+      scene = io::parse_scene(test::scene_file("dogbone/hybrid_" + modes[m] + ".toml"));
+      scene.time.end_time = 5.6e-3;
+      scene.output.frames = 1;
+      last[m] = run_curve(scene, "timing_" + modes[m], false);
+      wall[m].push_back(last[m].wall);
+    }
+  const Homogeneous h(scene);
+  const double t_lo = transient_end(scene);
+  Json rows = Json::array();
+  for (std::size_t m = 0; m < modes.size(); ++m) {
+    const perf::Ratio ratio = perf::ratio_of_medians(wall[m], wall[0]);
+    const Curve& c = last[m];
+    const Json& ps = c.summary["particle_steps"];
+    const Json& phases = c.summary["wall_time_phases"];
+    const double pd_steps = ps.value("pd", 0.0), mpm_steps = ps.value("mpm", 0.0), total = phases.value("total", 1.0);
+    // Largest |S − S_pd| / S_pd at equal times from the end of the start-up transient to pure
+    // SBPD's maximum load: the accuracy the saving is bought at.
+    double against_pd = 0.0;
+    for (std::size_t k = 0; k < c.t.size(); ++k) {
+      if (c.t[k] < t_lo || c.t[k] > last[0].t[last[0].peak]) continue;
+      const double s_pd = stress_at_time(last[0], c.t[k]);
+      if (std::isfinite(s_pd)) against_pd = std::max(against_pd, std::abs(c.S[k] - s_pd) / s_pd);
+    }
+    rows.push_back({modes[m], perf::median(wall[m]), 1.0 - ratio.value, 1.0 - ratio.hi, 1.0 - ratio.lo,
+                    phases.value("pd", 0.0) / total, phases.value("mpm", 0.0) / total,
+                    1e9 * perf::median(wall[m]) / (pd_steps + mpm_steps), pd_steps / (pd_steps + mpm_steps),
+                    worst_against_homogeneous(c, h, t_lo), against_pd, c.S[c.peak] / 1e6, c.e[c.peak],
+                    c.summary.value("events", Json::object()).value("onsets", 0)});
+  }
+  test::record_data(
+      kProblem, "05_timing",
+      {{"kind", "table"},
+       {"title", "The paper's timing for the tensile test, measured: the three modes in one process (to 5.6 ms)"},
+       {"columns",
+        {"mode", "median wall time (s)", "saving vs pd", "saving 95 % low", "saving 95 % high", "pd share", "mpm share",
+         "ns per particle-step", "PD share of particle-steps", "max |S/S_h − 1| from 0.57 ms to the maximum load",
+         "max |S/S_pd − 1| at equal times, same window", "S_max (MPa)", "e at S_max", "PD region onsets"}},
+       {"rows", rows},
+       {"caption",
+        "Δx = 1.25 mm, δ = 5Δx, the hybrid's (PD-stable) step in every mode; " + std::to_string(kDogboneTimingReps) +
+            " interleaved repetitions, one thread; saving = 1 − ratio of medians, bootstrap 95 % interval. No "
+            "particle fails before 5.6 ms at this resolution, so the adaptive modes are the grid alone and pure "
+            "SBPD's own accuracy (a 10-particle gauge with a 5-particle horizon) is in the row beside its time. "
+            "The paper's abstract: 43 % saved on the tensile test."}});
 }
 
 }  // namespace
