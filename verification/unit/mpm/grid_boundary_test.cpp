@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace pdmpm::mpm {
@@ -70,6 +71,25 @@ TEST(GridBoundary, AMovingBoxTravelsWithItsPrescribedVelocity) {
   restored.refresh();
   EXPECT_EQ(restored.nodes(0), gb.nodes(0));
   EXPECT_EQ(restored.nodes(1), gb.nodes(1));
+}
+
+// A field that does not depend on position is evaluated once per call: the constrained
+// velocities are the per-node evaluation's, bit for bit.
+TEST(GridBoundary, AUniformFieldGivesThePerNodeVelocities) {
+  const Grid<2> g = grid_10mm();
+  GridBc<2> per_node;
+  per_node.kind = BcKind::velocity;
+  per_node.min = Vec<2>(15.5e-3, -1.0);
+  per_node.max = Vec<2>(1.0, 1.0);
+  per_node.components = {true, true};
+  per_node.velocity_field = [](const Vec<2>&, double t) { return Vec<2>(0.3 * std::cos(1e3 * t), -0.1); };
+  GridBc<2> uniform = per_node;
+  uniform.field_depends_on_position = false;
+  std::vector<Vec<2>> a(static_cast<std::size_t>(g.size()), Vec<2>(1.0, 2.0)), b = a;
+  GridBoundary<2>({per_node}, g).constrain(a, 7e-4);
+  GridBoundary<2>({uniform}, g).constrain(b, 7e-4);
+  EXPECT_EQ(a, b);
+  EXPECT_EQ(a[5 * g.stride[1] + 18][0], 0.3 * std::cos(0.7));
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solver/core/error.hpp"
@@ -333,6 +334,28 @@ TEST(MpmRun, GridNodeBoxFromTheScene) {
   for (const std::string bad : {"domain_min = [0.0, 0.0]\n", "domain_min = [0.0, 0.0]\ndomain_max = [0.1, 0.0]\n",
                                 "domain_min = [0.0, 0.0]\ndomain_max = [0.1, 0.1]\npadding_cells = 4\n"})
     EXPECT_THROW(grid_box_scene(bad), InputError) << bad;
+}
+
+// A velocity boundary whose expressions do not mention x, y or z is evaluated once per
+// bc and call (GridBoundary::uniform_velocity); one that does stays per node.
+TEST(MpmRun, VelocityBoundaryKnowsWhetherItsFieldDependsOnPosition) {
+  auto pulled = [](const std::string& value) {
+    return test::SceneText{.id = "pulled",
+                           .horizon_ratio = 0.0,
+                           .model = "mpm",
+                           .model_keys = "",
+                           .tables = "[[boundary]]\nname = \"pull\"\nkind = \"velocity\"\nvalue = [" + value +
+                               ", \"free\"]\nregion = { type = \"box\", min = [0.015, -1.0], max = [1.0, 1.0] }\n"}
+        .parse("pulled.toml");
+  };
+  for (const auto& [value, depends] : std::vector<std::pair<std::string, bool>>{
+           {"\"2 * t\"", false}, {"\"3\"", false}, {"\"x * t\"", true}, {"\"sin(y)\"", true}}) {
+    const auto g = translate_mpm<2>(pulled(value));
+    ASSERT_FALSE(g.settings.boundaries.empty()) << value;
+    const mpm::GridBc<2>& bc = g.settings.boundaries.back();
+    EXPECT_EQ(bc.field_depends_on_position, depends) << value;
+    ASSERT_TRUE(bc.velocity_field) << value;
+  }
 }
 
 }  // namespace
