@@ -1,5 +1,6 @@
 #include "solver/mpm/j2_plasticity.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -107,7 +108,12 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
   // only then — an evaluation fewer per yielding point otherwise.
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
   double dg = 0.0, fv = f0;
-  const double scale = k.yield_stress * k.yield_stress;
+  // f's terms are O(κ²): the tolerance is relative to the yield stress at the start of the
+  // step, κ_n = σ_y + H α₀ (σ_y if that is less). Relative to σ_y² it lay below a hardened
+  // point's round-off (~1e-16 κ²), and the loop ran to its limit: the dog-bone's gauge at
+  // κ ≈ 4σ_y spent a third of its run here.
+  const double kappa_n = std::max(k.yield_stress, k.yield_stress + H * alpha0);
+  const double scale = kappa_n * kappa_n;
   for (int it = 0; it < 200; ++it) {
     if (std::abs(fv) <= 1e-15 * scale || (std::isfinite(hi) && hi - lo <= 1e-16 * hi)) break;
     double next = dg - fv / df;

@@ -24,7 +24,11 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
   using d = typename V::d;
   using m = typename V::m;
   const double c1 = law.c1, c2 = 2.0 * law.shear, H = law.hardening, dk = H * kSqrt2over3;
-  const double inf = std::numeric_limits<double>::infinity(), tol = 1e-15 * (law.yield_stress * law.yield_stress);
+  const double inf = std::numeric_limits<double>::infinity();
+  // j2_return_plane_stress's tolerance, relative to κ_n² = max(σ_y, σ_y + H α₀)².
+  const d hardened = law.yield_stress + H * alpha0;
+  const d kappa_n = V::select(law.yield_stress < hardened, hardened, d{} + law.yield_stress);
+  const d tol = 1e-15 * (kappa_n * kappa_n);
   auto f = [&](d dg, d& df) {
     const d d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
     const d p2 = s1 * d1 * d1 + s2 * d2 * d2, p = V::sqrt(p2);
