@@ -390,11 +390,14 @@ TEST(FullDogbone, TimingTableOfTheThreeModes) {
       const double s_pd = stress_at_time(last[0], c.t[k]);
       if (std::isfinite(s_pd)) against_pd = std::max(against_pd, std::abs(c.S[k] - s_pd) / s_pd);
     }
+    const int onsets = c.summary.value("events", Json::object()).value("onsets", 0);
+    // The caption (and docs/verification/dogbone.md) read the adaptive modes as the grid
+    // alone: a PD region forming before 5.6 ms makes that wrong, and they must be rewritten.
+    if (m > 0) EXPECT_EQ(onsets, 0) << modes[m] << ": a PD region formed; rewrite the table's reading";
     rows.push_back({modes[m], perf::median(wall[m]), 1.0 - ratio.value, 1.0 - ratio.hi, 1.0 - ratio.lo,
                     phases.value("pd", 0.0) / total, phases.value("mpm", 0.0) / total,
                     1e9 * perf::median(wall[m]) / (pd_steps + mpm_steps), pd_steps / (pd_steps + mpm_steps),
-                    worst_against_homogeneous(c, h, t_lo), against_pd, c.S[c.peak] / 1e6, c.e[c.peak],
-                    c.summary.value("events", Json::object()).value("onsets", 0)});
+                    worst_against_homogeneous(c, h, t_lo), against_pd, c.S[c.peak] / 1e6, c.e[c.peak], onsets});
   }
   test::record_data(
       kProblem, "05_timing",
