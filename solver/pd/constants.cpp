@@ -2,11 +2,17 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 namespace pdmpm::pd {
 namespace {
 
 constexpr double pi = std::numbers::pi;
+
+// Laterally confined 1D is an MPM setting: the scene parser gives PD scenes only the others.
+[[noreturn]] void not_a_pd_setting() {
+  throw std::invalid_argument("PD models have no uniaxial_strain setting (a 1D PD bar is uniaxial stress)");
+}
 
 // ∫₀¹ qⁿ e^{−q} dq = n! (1 − e^{−1} Σ_{k≤n} 1/k!)
 double exponential_unit_moment(int n) {
@@ -50,8 +56,9 @@ double pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, do
     case core::Setting::plane_strain:
       return 2.0 * m.E / ((1.0 + m.nu) * (1.0 - 2.0 * m.nu) * pi * measure * influence_moment(w, 2, delta));
     case core::Setting::solid3d: return 3.0 * m.E / (2.0 * pi * (1.0 - 2.0 * m.nu) * influence_moment(w, 3, delta));
+    case core::Setting::uniaxial_strain: break;
   }
-  return 0.0;
+  not_a_pd_setting();
 }
 
 double lps_weighted_volume(Influence w, core::Setting s, double delta, double measure) {
@@ -60,8 +67,9 @@ double lps_weighted_volume(Influence w, core::Setting s, double delta, double me
     case core::Setting::plane_stress:
     case core::Setting::plane_strain: return 2.0 * pi * measure * influence_moment(w, 3, delta);
     case core::Setting::solid3d: return 4.0 * pi * influence_moment(w, 4, delta);
+    case core::Setting::uniaxial_strain: break;
   }
-  return 0.0;
+  not_a_pd_setting();
 }
 
 double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, double fracture_energy, double delta,
@@ -72,8 +80,9 @@ double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, do
     case core::Setting::plane_stress:
     case core::Setting::plane_strain: return std::sqrt(fracture_energy / (c * measure * influence_moment(w, 3, delta)));
     case core::Setting::solid3d: return std::sqrt(2.0 * fracture_energy / (pi * c * influence_moment(w, 4, delta)));
+    case core::Setting::uniaxial_strain: break;
   }
-  return 0.0;
+  not_a_pd_setting();
 }
 
 LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
@@ -89,8 +98,9 @@ LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
       const double K = m.bulk();
       return {3.0 * K - 5.0 * G, 15.0 * G, K, 1.0 / 3.0, 3};
     }
+    case core::Setting::uniaxial_strain: break;
   }
-  return {};
+  not_a_pd_setting();
 }
 
 MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double delta, double measure) {
@@ -106,8 +116,9 @@ MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double d
     case core::Setting::solid3d:
       return {0.5 * (m.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
+    case core::Setting::uniaxial_strain: break;
   }
-  return {};
+  not_a_pd_setting();
 }
 
 }  // namespace pdmpm::pd

@@ -44,6 +44,7 @@ double measure_of(core::Setting s) {
     case core::Setting::plane_strain:
       return thickness;
     case core::Setting::solid3d:
+    case core::Setting::uniaxial_strain:  // MPM only (all_settings holds PD's four)
       return 1.0;
   }
   return 1.0;
@@ -329,6 +330,7 @@ MoConstants madenci_oterkus_typed(core::Setting s, const core::Elastic& mat) {
     case core::Setting::solid3d:
       return {0.5 * (mat.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
+    case core::Setting::uniaxial_strain: break;  // MPM only
   }
   return {};
 }
@@ -370,6 +372,7 @@ double classical_energy(core::Setting s, const core::Elastic& mat, const quad::S
     case core::Setting::plane_strain:
     case core::Setting::solid3d:
       return 0.5 * lam * eps_t.trace() * eps_t.trace() + G * (eps_t.array() * eps_t.array()).sum();
+    case core::Setting::uniaxial_strain: break;  // MPM only
   }
   return 0.0;
 }

@@ -393,7 +393,9 @@ TEST(FullDogbone, TimingTableOfTheThreeModes) {
     const int onsets = c.summary.value("events", Json::object()).value("onsets", 0);
     // The caption (and docs/verification/dogbone.md) read the adaptive modes as the grid
     // alone: a PD region forming before 5.6 ms makes that wrong, and they must be rewritten.
-    if (m > 0) EXPECT_EQ(onsets, 0) << modes[m] << ": a PD region formed; rewrite the table's reading";
+    if (m > 0) {
+      EXPECT_EQ(onsets, 0) << modes[m] << ": a PD region formed; rewrite the table's reading";
+    }
     rows.push_back({modes[m], perf::median(wall[m]), 1.0 - ratio.value, 1.0 - ratio.hi, 1.0 - ratio.lo,
                     phases.value("pd", 0.0) / total, phases.value("mpm", 0.0) / total,
                     1e9 * perf::median(wall[m]) / (pd_steps + mpm_steps), pd_steps / (pd_steps + mpm_steps),

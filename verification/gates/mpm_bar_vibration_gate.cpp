@@ -45,7 +45,7 @@ BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
   s.cell_size = h;
   s.shape = shape;
   s.scheme = scheme;
-  s.material = {mpm::MaterialModel::linear_elastic, {kE, 0.0, kRho}};
+  s.material = {mpm::MaterialModel::linear_elastic, {kE, 0.0, kRho}, {}};
   mpm::GridBc<1> fixed;
   fixed.name = "fixed end";
   fixed.kind = mirror_end ? mpm::BcKind::symmetry : mpm::BcKind::fixed;

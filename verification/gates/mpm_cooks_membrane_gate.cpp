@@ -82,7 +82,7 @@ CookResult run_cook(int cells_along_48, mpm::ShapeFunction shape, double damping
   // USL: the strain is integrated from the same grid velocity that moves the particles,
   // so the static state has F consistent with x (MUSL's remapped velocity is not).
   s.scheme = mpm::UpdateScheme::usl;
-  s.material = {mpm::MaterialModel::linear_elastic, {1.0, 1.0 / 3.0, 1.0}};
+  s.material = {mpm::MaterialModel::linear_elastic, {1.0, 1.0 / 3.0, 1.0}, {}};
   s.cell_size = h;
   s.damping_viscous = damping;
   s.flip = flip;

@@ -60,7 +60,7 @@ MmsResult<D> run_mms(const std::array<Axis, D>& axes, double nu, int cells, mpm:
   s.shape = shape;
   s.gimp_domain = cpgimp ? mpm::GimpDomain::stretch : mpm::GimpDomain::fixed;
   s.scheme = scheme;
-  s.material = {mpm::MaterialModel::neo_hookean, {kE, nu, kRho}};
+  s.material = {mpm::MaterialModel::neo_hookean, {kE, nu, kRho}, {}};
   const double mu_ = s.material.elastic.shear(), lambda = s.material.elastic.lame();
   s.body_acceleration = [=](const Vec<D>& X, double t) {
     double J = 1.0;

@@ -74,7 +74,7 @@ VortexResult run_vortex(int cells_per_unit, mpm::ShapeFunction shape, mpm::GimpD
   s.shape = shape;
   s.gimp_domain = domain;
   s.scheme = mpm::UpdateScheme::musl;
-  s.material = {mpm::MaterialModel::neo_hookean, {kE, kNu, kRho}};
+  s.material = {mpm::MaterialModel::neo_hookean, {kE, kNu, kRho}, {}};
   s.flip = flip;
   const double mu_rho = s.material.elastic.shear() / kRho;
   s.body_acceleration = [=](const Vec<2>& X, double t) {
