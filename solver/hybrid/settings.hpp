@@ -17,8 +17,20 @@ constexpr std::array<EnumName<Mode>, 3> names(Mode) {
   return {{{Mode::pd, "pd"}, {Mode::expand, "expand"}, {Mode::expand_shrink, "expand_shrink"}}};
 }
 
+// How the transition particles (grid particles inside a PD particle's horizon, virtual
+// PD particles) take part in PD. paper: their PD state (m, θ, the plastic return) comes
+// from their bonds to PD particles alone, as a surface particle's would (Noorian et al.
+// eq 10). full_state: from their whole family — the bonds to grid particles count in the
+// state and exchange no force — so under an affine motion their force states, and with
+// them the PD particles' forces, are the interior ones (docs/models/hybrid.md, ghost forces).
+enum class Coupling { paper, full_state };
+constexpr std::array<EnumName<Coupling>, 2> names(Coupling) {
+  return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}}};
+}
+
 struct Settings {
   Mode mode = Mode::expand_shrink;
+  Coupling coupling = Coupling::paper;
   RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
   int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
   CrackTipSettings tips;

@@ -38,6 +38,7 @@ Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const 
     throw RunError("hybrid: the PD body and the MPM simulation must share one particle store");
   if (pd.particles().n_ghost() > 0)
     throw RunError("hybrid: symmetry planes are not supported (PD regions are not mirrored)");
+  pd.system().transition_full_state = settings_.coupling == Coupling::full_state;
 }
 
 template <int D>
@@ -226,6 +227,8 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
     } else if (was == ParticleKind::pd) {
       to_mpm<D>(sys, pd_.model(), mpm_, i);
       ++events_.to_mpm;
+    } else if (now == ParticleKind::transition && sys.transition_full_state) {
+      to_pd<D>(mpm_, sys, pd_.model(), i);  // its whole-family PD state starts from the grid's plastic state
     }
   }
   if (changed.empty()) return;

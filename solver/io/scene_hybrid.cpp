@@ -42,6 +42,7 @@ void read_hybrid(const TomlReader& t, Scene& s) {
                      "the hybrid needs dimension = 2 or 3 (got " + std::to_string(s.dimension) + ")");
   hybrid::Settings h;
   if (auto v = t.optional_enum<hybrid::Mode>("mode")) h.mode = *v;
+  if (auto v = t.optional_enum<hybrid::Coupling>("coupling")) h.coupling = *v;
   auto number = [&t](const char* key, double& field) {
     if (auto v = t.optional_number(key)) field = *v;
   };

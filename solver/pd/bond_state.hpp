@@ -11,6 +11,10 @@
 //            is not part of the reference family (LPS weighted volume), while a
 //            bond broken by the run still is, so m does not depend on the history
 //            of particle kinds.
+//   state    (bit 3) the bond counts in its owner's state (m, θ, the plastic return)
+//            but exchanges no force: a hybrid's transition particle, with the
+//            full-state coupling, measures its state over its whole family
+//            (hybrid/settings.hpp, Coupling::full_state). Never set with bit 1.
 // The flags the kernels write are a trial state; accept() commits it at the end
 // of a step, reject() returns to the last committed state (the Lanczos estimate
 // and dynamic relaxation's trial evaluations need no hand-made save/restore).
@@ -22,16 +26,19 @@
 #include "solver/core/index.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/core/state_archive.hpp"
+#include "solver/pd/kernels/bond_kernels.hpp"
 
 namespace pdmpm::pd {
 
 inline constexpr std::uint8_t kBondBroken = 1;
 inline constexpr std::uint8_t kBondInactive = 2;
 inline constexpr std::uint8_t kBondCut = 4;
+inline constexpr std::uint8_t kBondStateOnly = kernels::kStateOnlyFlag;
 
-// Which bonds of a family a sum runs over: the live ones (what acts now), or
-// the reference family (what LPS's weighted volume is built on).
-enum class BondSet { live, reference };
+// Which bonds of a family a sum runs over: the live ones (what acts now), those of
+// the particle's state (live, or state-only and intact), or the reference family
+// (what LPS's weighted volume is built on).
+enum class BondSet { live, state, reference };
 
 // A particle takes part in PD bonds when it is PD, or a transition particle (an
 // MPM particle inside a PD particle's horizon, a virtual PD particle).
@@ -40,6 +47,19 @@ inline bool pd_like(core::ParticleKind k) { return k == core::ParticleKind::pd |
 // two transition particles belong to the grid, not to PD.
 inline bool bond_active(core::ParticleKind a, core::ParticleKind b) {
   return pd_like(a) && pd_like(b) && (a == core::ParticleKind::pd || b == core::ParticleKind::pd);
+}
+// What a bond from a particle of kind a to one of kind b is: active (forces and state),
+// state only (a transition particle's bond to a grid particle, when transition
+// particles keep whole families), or inactive.
+enum class BondRole : std::uint8_t { active, state_only, inactive };
+inline BondRole bond_role(core::ParticleKind a, core::ParticleKind b, bool transition_full_state) {
+  if (bond_active(a, b)) return BondRole::active;
+  const bool grid_particle = b == core::ParticleKind::mpm || b == core::ParticleKind::transition;
+  if (transition_full_state && a == core::ParticleKind::transition && grid_particle) return BondRole::state_only;
+  return BondRole::inactive;
+}
+inline std::uint8_t role_bits(BondRole r) {
+  return r == BondRole::active ? 0 : r == BondRole::state_only ? kBondStateOnly : kBondInactive;
 }
 
 // Values per item as a trial (what the current evaluation writes) and as
@@ -70,6 +90,8 @@ struct BondState {
   }
   bool broken(BondIndex b) const { return flags.trial[b] & kBondBroken; }
   bool live(BondIndex b) const { return flags.trial[b] == 0; }
+  // Counts in its owner's state now: live, or a state-only bond that is intact.
+  bool in_state(BondIndex b) const { return (flags.trial[b] & ~kBondStateOnly) == 0; }
   // Active, and not cut before the run (broken during it or not).
   bool in_reference_family(BondIndex b) const { return !(flags.trial[b] & (kBondInactive | kBondCut)); }
   std::uint8_t* kernel_flags() { return flags.trial.data(); }
@@ -79,12 +101,16 @@ struct BondState {
     flags.trial[b] |= kBondBroken | kBondCut;
     flags.committed[b] |= kBondBroken | kBondCut;
   }
-  // Region changes: sets bit 1 in both states, never touches bit 0.
-  void set_active(BondIndex b, bool active) {
-    const std::uint8_t keep = static_cast<std::uint8_t>(~kBondInactive);
-    const std::uint8_t bit = active ? 0 : kBondInactive;
-    flags.trial[b] = static_cast<std::uint8_t>((flags.trial[b] & keep) | bit);
-    flags.committed[b] = static_cast<std::uint8_t>((flags.committed[b] & keep) | bit);
+  // Region changes: sets bits 1 and 3 in both states, never touches bit 0.
+  void set_role(BondIndex b, BondRole role) {
+    const std::uint8_t keep = static_cast<std::uint8_t>(~(kBondInactive | kBondStateOnly));
+    const std::uint8_t bits = role_bits(role);
+    flags.trial[b] = static_cast<std::uint8_t>((flags.trial[b] & keep) | bits);
+    flags.committed[b] = static_cast<std::uint8_t>((flags.committed[b] & keep) | bits);
+  }
+  BondRole role(BondIndex b) const {
+    const std::uint8_t f = flags.trial[b];
+    return f & kBondInactive ? BondRole::inactive : f & kBondStateOnly ? BondRole::state_only : BondRole::active;
   }
   // Copies only when the step changed something (most steps break no bond).
   void accept() {

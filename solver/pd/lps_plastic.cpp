@@ -116,7 +116,7 @@ std::vector<double> LpsPlastic<D>::isotropy_weights(const System<D>& sys) {
 
 // Radial return of particle i's deviatoric force state (reads the committed
 // state, writes the trial one), called by the first pass with eps[b − begin], the trial
-// deviatoric extension ε = e − γθ_c|ξ| − p_n of each live bond b of i, with
+// deviatoric extension ε = e − γθ_c|ξ| − p_n of each bond b of i's state, with
 // θ_c = (d/m_d) Σ ωβcV|ξ|e the dilatation measured with the deviatoric weights (so
 // that Σ ωβcV|ξ| ε = 0 and the force is the gradient of W; with c ≡ 1 it is LPS's θ),
 // and norm2_[i] = Σ ωβcV ε².
@@ -150,15 +150,15 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
-  // p ← p + (1 − r) ε on every live bond; broken and inactive bonds keep theirs. A particle
+  // p ← p + (1 − r) ε on every bond of the state; broken and inactive bonds keep theirs. A particle
   // that does not flow keeps p_n, copied back only if an earlier trial changed it.
   if (r == 1.0 && !trial_flowed_[i]) return;
   trial_flowed_[i] = r != 1.0;
   const double flow = 1.0 - r;
   const BondIndex begin = sys.families.begin(i);
   for (BondIndex b = begin; b < sys.families.end(i); ++b)
-    plastic_ext_.trial[b] = flow != 0.0 && sys.bonds.live(b) ? plastic_ext_.committed[b] + flow * eps[b - begin]
-                                                             : plastic_ext_.committed[b];
+    plastic_ext_.trial[b] = flow != 0.0 && sys.bonds.in_state(b) ? plastic_ext_.committed[b] + flow * eps[b - begin]
+                                                                 : plastic_ext_.committed[b];
 }
 
 // The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,
@@ -367,7 +367,7 @@ Mat<D> LpsPlastic<D>::force_state_stress(const System<D>& sys, Index i) const {
   const auto& p = sys.particles;
   const auto& t = sys.table;
   Mat<D> s = Mat<D>::Zero();
-  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
+  sys.for_each_bond(i, BondSet::state, [&](BondIndex b, Index j, int k) {
     const auto g = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
     const double tij = scalar_force_state(i, b, k, g.e, t.length[k]);
     s += t.weight[k] * p.volume[j] * tij / g.l * (g.y * t.xi[k].transpose());

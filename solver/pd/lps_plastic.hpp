@@ -77,8 +77,8 @@ class LpsPlastic final : public Model<D> {
     return setting_ == core::Setting::plane_stress ? &out_of_plane_ : nullptr;
   }
 
-  // Stress of particle i from its own force state, Σ_j t_ij (ξ ⊗ y/|y|) β V_j
-  // (= λθI + 2Gε for an elastic homogeneous state), from the last evaluation.
+  // Stress of particle i from its own force state, Σ_j t_ij (ξ ⊗ y/|y|) β V_j over the
+  // bonds of its state (= λθI + 2Gε for an elastic homogeneous state), from the last evaluation.
   Mat<D> force_state_stress(const System<D>& sys, Index i) const;
   // σ_zz of particle i in the 2D settings (0 in plane stress), from the last evaluation.
   double out_of_plane_stress(Index i) const;

@@ -43,6 +43,9 @@ struct System {
   // κ chosen so the full stencil's fourth bond moment is isotropic (docs/models/lps_plastic.md);
   // false: the plain lattice sums, whose deviatoric response is cubic.
   bool isotropic_deviatoric = false;
+  // A hybrid's transition particles measure their state over their whole family (bonds
+  // to grid particles state-only, pd/bond_state.hpp); false: over their active bonds.
+  bool transition_full_state = false;
   HpdOptions hpd;  // the hybrid model's law and sub-horizon size (solver/pd/hpd.hpp)
 
   double spacing() const { return particles.lattice.spacing; }
@@ -56,7 +59,8 @@ struct System {
             families.offsets.data(),
             families.neighbor.data(),
             families.shape.data(),
-            bonds.kernel_flags()};
+            bonds.kernel_flags(),
+            transition_full_state};
   }
 
   // Whether every particle (ghosts too) has the same volume, as on a lattice body.
@@ -80,8 +84,8 @@ struct System {
     return p.kind[j < p.n_real ? j : p.ghost_owner[j - p.n_real]];
   }
 
-  // Re-derives every bond's inactive bit and the owner list from the kinds;
-  // returns the real particles whose set of active bonds changed.
+  // Re-derives every bond's role (pd::bond_role) and the owner list from the kinds;
+  // returns the real particles whose set of active or state bonds changed.
   std::vector<Index> refresh_activity() { return refresh_activity_of(nullptr); }
 
   // The same when only the real particles in `kind_changed` changed kind: a bond's
@@ -101,11 +105,14 @@ struct System {
 
   // Calls fn(b, j, k) — bond index, neighbour, stencil offset — for every bond
   // of particle i in the set (pd/bond_state.hpp): live (intact, both ends
-  // PD-like) or the reference family (active, not cut before the run).
+  // PD-like), the state (live or state-only) or the reference family (active or
+  // state-only, not cut before the run).
   template <class Fn>
   void for_each_bond(Index i, BondSet set, Fn&& fn) const {
     for (BondIndex b = families.begin(i); b < families.end(i); ++b)
-      if (set == BondSet::live ? bonds.live(b) : bonds.in_reference_family(b))
+      if (set == BondSet::live        ? bonds.live(b)
+              : set == BondSet::state ? bonds.in_state(b)
+                                      : bonds.in_reference_family(b))
         fn(b, families.neighbor[b], static_cast<int>(families.shape[b]));
   }
   template <class Fn>
@@ -125,9 +132,9 @@ struct System {
       if (!only || (*only)[i]) {
         bool moved = false;
         for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
-          const bool active = bond_active(ki, kind(families.neighbor[b]));
-          moved = moved || active != !(bonds.flags.trial[b] & kBondInactive);
-          bonds.set_active(b, active);
+          const BondRole role = bond_role(ki, kind(families.neighbor[b]), transition_full_state);
+          moved = moved || role != bonds.role(b);
+          bonds.set_role(b, role);
         }
         if (moved) changed.push_back(i);
       }

@@ -1,6 +1,6 @@
 #pragma once
 // Discrete weighted volume m_i = Σ_j ω β |ξ|² V_j (docs/models/lps.md)
-// and the dilatation θ_i = (d/m_i) Σ_j ω β |ξ| e V_j.
+// and the dilatation θ_i = (d/m_i) Σ_j ω β |ξ| e V_j (over the bonds of i's state).
 #include <vector>
 
 #include "solver/pd/bond_kinematics.hpp"
@@ -15,7 +15,9 @@ template <int D>
 double weighted_volume(const System<D>& sys, Index i, BondSet set = BondSet::live) {
   const auto& t = sys.table;
   double m = 0.0;
-  sys.for_each_bond(i, set, [&](BondIndex, Index j, int k) { m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j]; });
+  sys.for_each_bond(i, set, [&](BondIndex, Index j, int k) {
+    m += t.weight[k] * t.length[k] * t.length[k] * sys.particles.volume[j];
+  });
   return m;
 }
 
@@ -36,7 +38,7 @@ double dilatation_of(const System<D>& sys, Index i, double m_i) {
   const auto& t = sys.table;
   const auto& p = sys.particles;
   double sum = 0.0;
-  sys.for_each_live_bond(i, [&](BondIndex, Index j, int k) {
+  sys.for_each_bond(i, BondSet::state, [&](BondIndex, Index j, int k) {
     const auto bond = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
     sum += t.weight[k] * t.length[k] * bond.e * p.volume[j];
   });

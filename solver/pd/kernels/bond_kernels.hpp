@@ -18,6 +18,10 @@ namespace pdmpm::pd::kernels {
 
 inline constexpr int lanes = 8;
 
+// The bond flag (pd/bond_state.hpp) of a bond that counts in its owner's state but
+// exchanges no force: lps_plastic's first pass takes it, every force pass skips it.
+inline constexpr std::uint8_t kStateOnlyFlag = 8;
+
 // Per-stencil-offset data, structure of arrays, each padded with `lanes` zeros
 // so a block starting at any stencil row can be loaded whole; and the same as
 // rows, for blocks whose offsets are scattered.
@@ -37,7 +41,8 @@ struct FamilyView {
   const BondIndex* offsets;
   const Index* neighbor;
   const std::uint16_t* shape;
-  std::uint8_t* broken;  // per-bond flags (pd/bond_state.hpp): live when 0; a new break sets 1
+  std::uint8_t* broken;   // per-bond flags (pd/bond_state.hpp): live when 0; a new break sets 1
+  bool state_only_bonds;  // some flag is kStateOnlyFlag alone (a hybrid's full-state transition particles)
 
   Index particle(Index k) const { return owner ? owner[k] : k; }
 };
@@ -77,7 +82,8 @@ struct LpsArgs {
 // lps_plastic's bond loops (solver/pd/lps_plastic.hpp). The first is LPS's
 // dilatation pass that also measures θ_c with the deviatoric weights c ωβ and, in a
 // second sweep over the same family (in cache), the trial deviatoric extension
-// ε = e − γθ_c|ξ| − p_n of every live bond and Σ c ωβ V ε²; it then hands the
+// ε = e − γθ_c|ξ| − p_n of every bond of the state (live, or kStateOnlyFlag: such a
+// bond counts in θ, θ_c and the norm but never breaks) and Σ c ωβ V ε²; it then hands the
 // particle, with its family's ε, to the model's return mapping, which scales the
 // elastic deviator by r. The second sums the pair forces (t_ij + t_ji) β V_j y/|y| with
 // t_ij/ω = μ_i |ξ| + c s_i ε_ij, μ = (mean term)/m and s = r B/m_d per particle. It forms
@@ -94,7 +100,7 @@ struct LpsPlasticArgs {
   double* theta_c;                  // θ_c = (d/m_d) Σ c ωβ |ξ| e V per real particle (pass 1 out)
   double* norm2;                    // Σ c ωβ V ε² per real particle (pass 1 out)
   // The model's return mapping of particle i, called by pass 1 when θ, θ_c and the norm are
-  // known, with eps[b − begin] = ε of each live bond side b of i's family [begin, end).
+  // known, with eps[b − begin] = ε of each bond side b of i's state in its family [begin, end).
   void (*return_map)(void* model, Index i, const double* eps);
   void* model;
   const double* particle_rows;      // (μ, s, γθ_c, 0) per particle (force pass)

@@ -39,6 +39,21 @@ inline m8 live_lanes(const FamilyView& fam, BondIndex b0, int count) {
   return lanes_zero(fam.broken + b0) & (lane_ids < count);
 }
 
+// Lanes of a block whose bond counts in its owner's state: live, or intact and kept
+// for the state only (kStateOnlyFlag: a full-state transition particle's bonds to
+// grid particles). Without such bonds in the body, the live lanes.
+inline m8 state_lanes(const FamilyView& fam, BondIndex b0, int count) {
+  if (!fam.state_only_bonds) return live_lanes(fam, b0, count);
+  return lanes_zero_ignoring(fam.broken + b0, kStateOnlyFlag) & (lane_ids < count);
+}
+
+// Which lanes a bond loop visits: the live ones (forces) or those of the state.
+enum class Lanes { live, state };
+template <Lanes Set>
+inline m8 visited_lanes(const FamilyView& fam, BondIndex b0, int count) {
+  return Set == Lanes::live ? live_lanes(fam, b0, count) : state_lanes(fam, b0, count);
+}
+
 // Whether a block has a live bond. A block without one adds nothing to any sum (every
 // kernel masks its lanes with `live`) and is skipped before its gather: in a hybrid a
 // transition particle's family is mostly bonds to other transition particles, which
@@ -52,7 +67,7 @@ struct Block {
   d8 xi[D];   // ξ
   d8 L;       // |ξ|
   d8 wv;      // ω β V_j
-  m8 live;    // all ones for an intact bond, 0 for a broken bond or a padding lane
+  m8 live;    // all ones for a visited bond (live, or in the state), 0 for a broken bond or a padding lane
   alignas(32) Index j[lanes];
 
   // Families are subsequences of the stencil, in stencil order. Where a block's
@@ -62,7 +77,7 @@ struct Block {
   // Lanes past the family's end read the padded tail of the bond arrays and are
   // masked out by `live`.
   // (Forced inline: as a call, the gathered lanes go through memory, ~1.5× slower.)
-  template <class Mode>
+  template <Lanes Set, class Mode>
   __attribute__((always_inline)) void gather(Mode, const FamilyView& fam, const BondShapeTable& T, const double* u,
                                              const double* ui, const double* volume, BondIndex b0, int count) {
     __builtin_memcpy(j, fam.neighbor + b0, sizeof j);
@@ -89,13 +104,13 @@ struct Block {
     else
       wv *= d8{volume[j[0]], volume[j[1]], volume[j[2]], volume[j[3]],
                volume[j[4]], volume[j[5]], volume[j[6]], volume[j[7]]};
-    live = live_lanes(fam, b0, count);
+    live = visited_lanes<Set>(fam, b0, count);
   }
 };
 
 // The bond loop of particle i: gathers each block of its family into B and
 // calls block(mode, b0, count), with the gather mode chosen once per family.
-template <int D, class Args, class Fn>
+template <int D, Lanes Set = Lanes::live, class Args, class Fn>
 __attribute__((always_inline)) inline void for_each_block(const Args& a, Index i, Block<D>& B, Fn&& block) {
   const FamilyView& fam = a.fam;
   const BondIndex begin = fam.offsets[i], end = fam.offsets[i + 1];
@@ -107,8 +122,8 @@ __attribute__((always_inline)) inline void for_each_block(const Args& a, Index i
     const double* ui = a.u + D * i;
     for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
       const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-      if (!any_live(fam, b0, count)) continue;
-      B.gather(mode, fam, a.table, a.u, ui, a.volume, b0, count);
+      if (!any(visited_lanes<Set>(fam, b0, count))) continue;
+      B.template gather<Set>(mode, fam, a.table, a.u, ui, a.volume, b0, count);
       block(mode, b0, count);
     }
   };
@@ -207,9 +222,10 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
     const Index i = fam.particle(k);
     d8 acc = splat(0.0);
     Block<D> B;
-    for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+    for_each_block<D, Lanes::state>(a, i, B, [&](auto, BondIndex b0, int count) {
       const Deformed<D> g = deform<D>(B);
-      const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+      const m8 live = fam.state_only_bonds ? live_lanes(fam, b0, count) : B.live;  // state-only bonds never break
+      const m8 breaks = breaking & live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
       const m8 acts = B.live & ~breaks;
       acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
       newly += mark_broken(fam, b0, count, breaks);
@@ -287,9 +303,11 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       double* row = strain.data();  // row[b − begin] for b in [begin, end + lanes)
       d8 acc = splat(0.0), acc_c = splat(0.0);
       Block<D> B;
-      for_each_block<D>(a, i, B, [&](auto, BondIndex b0, int count) {
+      for_each_block<D, Lanes::state>(a, i, B, [&](auto, BondIndex b0, int count) {
         const Deformed<D> g = deform<D>(B);
-        const m8 breaks = breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+        // Only live bonds break: a state-only bond belongs to the grid.
+        const m8 live = fam.state_only_bonds ? live_lanes(fam, b0, count) : B.live;
+        const m8 breaks = breaking & live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
         const m8 acts = B.live & ~breaks;
         const d8 e = g.num / (g.len + B.L);
         const d8 moment = keep(acts, B.wv * B.L * e);  // ω β |ξ| e V_j
@@ -309,8 +327,8 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       d8 n2 = splat(0.0);
       for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
         const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-        const m8 live = live_lanes(fam, b0, count);
-        if (!any(live)) continue;  // its row was not written (skipped above); no live ε is read from it
+        const m8 live = state_lanes(fam, b0, count);
+        if (!any(live)) continue;  // its row was not written (skipped above); no ε is read from it
         const std::uint16_t* shape = fam.shape + b0;
         const Index* j = fam.neighbor + b0;
         const d8 L = per_offset(a.table.length, shape, count);

@@ -229,10 +229,13 @@ TEST(BondState, RejectRestoresAndAcceptKeeps) {
 // gives what the full pass gives — the bond flags, the particles whose active bonds
 // changed, the owner list — over a sequence of random kind changes (PD, transition,
 // MPM, removed), as a hybrid makes them at every conversion.
-TEST(MixedBody, RefreshOfTheChangedKindsEqualsTheFullPass) {
+class MixedBodyRefresh : public ::testing::TestWithParam<bool> {};
+
+TEST_P(MixedBodyRefresh, OfTheChangedKindsEqualsTheFullPass) {
   const auto scene = plate("lps");
   auto full = sim::build_pd<2>(scene);
   auto part = sim::build_pd<2>(scene);
+  full.system.transition_full_state = part.system.transition_full_state = GetParam();
   const Index n = full.system.particles.n_real;
   ASSERT_EQ(full.system.particles.n_ghost(), 0);
   std::mt19937 rng(3);
@@ -259,6 +262,74 @@ TEST(MixedBody, RefreshOfTheChangedKindsEqualsTheFullPass) {
     refreshed += a.size();
   }
   EXPECT_GT(refreshed, 100u) << "the changes must change bonds, or nothing is compared";
+}
+
+// With and without state-only bonds (transition particles keeping whole families).
+INSTANTIATE_TEST_SUITE_P(MixedBody, MixedBodyRefresh, ::testing::Bool());
+
+// Kinds in bands along x: PD, then transition (a bond reach wide), then MPM.
+void bands(core::Particles<2>& p, double pd_to, double transition_to) {
+  for (Index i = 0; i < p.n_real; ++i) {
+    const double x = p.x0[i][0];
+    p.kind[i] = x < pd_to ? ParticleKind::pd : x < transition_to ? ParticleKind::transition : ParticleKind::mpm;
+  }
+}
+
+// Under an affine motion, transition particles that measure their state over their whole
+// family (pd::System::transition_full_state) have the interior force state, so every PD
+// particle is in equilibrium, the one next to the transition band too; measured over
+// their bonds to PD particles alone (the paper's coupling), the PD particles next to the
+// band feel a force of the order of a free face's. Bonds to grid particles carry no force
+// either way: a transition particle's force is the sum over its bonds to PD particles.
+TEST(MixedBody, FullStateTransitionParticlesLeaveNoGhostForceOnPd) {
+  const double height = 0.03;
+  const auto scene = test::SceneText{.id = "mixed",
+                                     .max = {0.04, height},
+                                     .poissons_ratio = poisson_text("lps_plastic"),
+                                     .material_keys = "yield_stress = 1e12\ntangent_modulus = 0\n",
+                                     .model = "lps_plastic"}
+                         .parse("mixed.toml");
+  for (const bool full_state : {false, true}) {
+    auto setup = sim::build_pd<2>(scene);
+    auto& sys = setup.system;
+    auto& p = sys.particles;
+    sys.transition_full_state = full_state;
+    const double dx = sys.spacing(), reach = 3.5 * dx, pd_to = 0.02;
+    bands(p, pd_to, pd_to + reach);
+    Mat<2> H;
+    H << 1e-4, 0.3e-4, 0.3e-4, -0.5e-4;
+    for (Index i = 0; i < p.n_real; ++i) p.u[i] = H * p.x0[i];
+    auto sim = sim::make_simulation(setup);
+    sim.refresh_kinds();
+    sim.internal_forces(false);
+    // Away from the top and bottom edges (two bond reaches: a free face disturbs the states
+    // of the particles within one reach, and the forces of those within two): the largest
+    // force on the PD particles at the left edge (the scale: a free face) and on those
+    // within a reach of the transition band.
+    double edge = 0.0, interface = 0.0;
+    for (Index i = 0; i < p.n_real; ++i) {
+      const Vec<2> x = p.x0[i];
+      if (p.kind[i] != ParticleKind::pd || x[1] < 2 * reach || x[1] > height - 2 * reach) continue;
+      if (x[0] < dx) edge = std::max(edge, p.f[i].norm());
+      if (x[0] > pd_to - reach) interface = std::max(interface, p.f[i].norm());
+    }
+    ASSERT_GT(edge, 0.0);
+    if (full_state) {
+      EXPECT_LT(interface, 1e-11 * edge) << "round-off of sums of ~30 bonds";
+    } else {
+      EXPECT_GT(interface, 0.1 * edge) << "the paper's coupling leaves a ghost force at the interface";
+    }
+    // Bonds to grid particles count in the state only when asked for.
+    Index state_only = 0;
+    for (Index i = 0; i < p.n_real; ++i)
+      for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
+        state_only += sys.bonds.role(b) == BondRole::state_only;
+    if (full_state) {
+      EXPECT_GT(state_only, 0);
+    } else {
+      EXPECT_EQ(state_only, 0);
+    }
+  }
 }
 
 }  // namespace
