@@ -279,8 +279,7 @@ void bands(core::Particles<2>& p, double pd_to, double transition_to) {
 // family (pd::System::transition_full_state) have the interior force state, so every PD
 // particle is in equilibrium, the one next to the transition band too; measured over
 // their bonds to PD particles alone (the paper's coupling), the PD particles next to the
-// band feel a force of the order of a free face's. Bonds to grid particles carry no force
-// either way: a transition particle's force is the sum over its bonds to PD particles.
+// band feel a force of the order of a free face's. State-only bonds exist only when asked for.
 TEST(MixedBody, FullStateTransitionParticlesLeaveNoGhostForceOnPd) {
   const double height = 0.03;
   const auto scene = test::SceneText{.id = "mixed",
