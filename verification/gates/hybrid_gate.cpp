@@ -138,29 +138,28 @@ double momentum_drift(hybrid::Coupling coupling) {
 }
 
 TEST(FastHybrid, CouplingConservesMomentum) {
-  const std::string reason =
-      "round-off of ~10⁴-term sums per step over 200 steps: 1e-12 leaves three decades above the measured 1e-15";
-  test::record_gate(Gate{.id = "hybrid.momentum.coupling",
-                         .claim = "the paper's coupling (PD pair forces of transition particles into the grid, "
-                                  "reactions on the PD particles) shall conserve linear momentum over 200 steps of a "
-                                  "free PD | transition | MPM plate (drift relative to Σ m|v|)",
-                         .measured = momentum_drift(hybrid::Coupling::paper),
-                         .expected = 1e-12,
-                         .compare = Compare::at_most,
-                         .tolerance_reason = reason,
-                         .source = kSource,
-                         .unit = "",
-                         .problem = kProblem});
-  test::record_gate(Gate{.id = "hybrid.momentum.coupling_full_state",
-                         .claim = "so shall the full-state coupling (a transition particle's bonds to grid particles "
-                                  "count in its state and exchange no force), on the same plate",
-                         .measured = momentum_drift(hybrid::Coupling::full_state),
-                         .expected = 1e-12,
-                         .compare = Compare::at_most,
-                         .tolerance_reason = reason,
-                         .source = kSource,
-                         .unit = "",
-                         .problem = kProblem});
+  struct Case {
+    hybrid::Coupling coupling;
+    const char *id, *claim;
+  };
+  for (const Case& c :
+       {Case{hybrid::Coupling::paper, "hybrid.momentum.coupling",
+             "the paper's coupling (PD pair forces of transition particles into the grid, reactions on the PD "
+             "particles) shall conserve linear momentum over 200 steps of a free PD | transition | MPM plate (drift "
+             "relative to Σ m|v|)"},
+        Case{hybrid::Coupling::full_state, "hybrid.momentum.coupling_full_state",
+             "so shall the full-state coupling (a transition particle's bonds to grid particles count in its state "
+             "and exchange no force), on the same plate"}})
+    test::record_gate(Gate{.id = c.id,
+                           .claim = c.claim,
+                           .measured = momentum_drift(c.coupling),
+                           .expected = 1e-12,
+                           .compare = Compare::at_most,
+                           .tolerance_reason = "round-off of ~10⁴-term sums per step over 200 steps: 1e-12 leaves "
+                                               "three decades above the measured 1e-15",
+                           .source = kSource,
+                           .unit = "",
+                           .problem = kProblem});
 }
 
 TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
