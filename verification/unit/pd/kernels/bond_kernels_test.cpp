@@ -49,7 +49,7 @@ struct Body {
   // particle; p_n and the reverse bond's p per bond side.
   std::vector<double> shell, inv_md, rows, volumetric, scale, plastic, reverse_plastic;
 
-  explicit Body(bool uniform_volume) {
+  explicit Body(bool uniform_volume, bool state_only = false) {
     test::BlockSpec spec;
     spec.sites = D == 1 ? 40 : D == 2 ? 14 : 8;
     spec.setting = D == 1 ? core::Setting::bar1d : D == 2 ? core::Setting::plane_strain : core::Setting::solid3d;
@@ -65,6 +65,11 @@ struct Body {
       if (!uniform_volume) p.volume[i] *= 1.0 + 0.01 * (i % 5);
     }
     for (BondIndex b = 0; b < sys.families.n_bonds(); b += 7) sys.bonds.cut(b);  // pre-cut bonds
+    if (state_only) {  // as a hybrid's full-state transition particles have them (pd/bond_state.hpp)
+      sys.transition_full_state = true;
+      for (BondIndex b = 3; b < sys.families.n_bonds(); b += 5)
+        if (sys.bonds.live(b)) sys.bonds.set_role(b, BondRole::state_only);
+    }
     const auto n = static_cast<std::size_t>(p.size());
     m.resize(n);
     alpha_beta.resize(2 * n);
@@ -198,28 +203,58 @@ template <int D>
 void expect_every_set_matches_sse2() {
   // On a CPU with SSE2 only there is nothing to compare: the test is skipped, not passed.
   if (runnable_sets().size() == 1) GTEST_SKIP() << "only SSE2 on this CPU: nothing to compare";
-  for (const bool uniform : {true, false}) {
-    Body<D> body(uniform);
-    ASSERT_EQ(body.sys.uniform_volume(), uniform);
-    const std::string where = "D = " + std::to_string(D) + (uniform ? ", uniform volume" : ", per-particle volume");
-    const Outputs pmb_ref = body.run_pmb(kernels_sse2, true, false, true);
-    const Outputs lps_ref = body.run_lps(kernels_sse2, false);
-    ASSERT_GT(pmb_ref.newly, 0) << where << ": the body must break bonds during the call";
-    for (const KernelSet* set : runnable_sets()) {
-      const std::string what = where + ", " + set->name;
-      for (const bool after : {false, true}) {
-        EXPECT_TRUE(body.run_pmb(*set, true, after, true) == body.run_pmb(kernels_sse2, true, after, true))
-            << what << ", PMB breaking, after_force " << after;
-        EXPECT_TRUE(body.run_lps(*set, after) == body.run_lps(kernels_sse2, after))
-            << what << ", LPS, after_force " << after;
-        EXPECT_TRUE(body.run_lps_plastic(*set, after) == body.run_lps_plastic(kernels_sse2, after))
-            << what << ", lps_plastic, after_force " << after;
+  for (const bool uniform : {true, false})
+    for (const bool state_only : {false, true}) {
+      Body<D> body(uniform, state_only);
+      ASSERT_EQ(body.sys.uniform_volume(), uniform);
+      const std::string where = "D = " + std::to_string(D) + (uniform ? ", uniform volume" : ", per-particle volume") +
+          (state_only ? ", state-only bonds" : "");
+      const Outputs pmb_ref = body.run_pmb(kernels_sse2, true, false, true);
+      const Outputs lps_ref = body.run_lps(kernels_sse2, false);
+      ASSERT_GT(pmb_ref.newly, 0) << where << ": the body must break bonds during the call";
+      for (const KernelSet* set : runnable_sets()) {
+        const std::string what = where + ", " + set->name;
+        for (const bool after : {false, true}) {
+          EXPECT_TRUE(body.run_pmb(*set, true, after, true) == body.run_pmb(kernels_sse2, true, after, true))
+              << what << ", PMB breaking, after_force " << after;
+          EXPECT_TRUE(body.run_lps(*set, after) == body.run_lps(kernels_sse2, after))
+              << what << ", LPS, after_force " << after;
+          EXPECT_TRUE(body.run_lps_plastic(*set, after) == body.run_lps_plastic(kernels_sse2, after))
+              << what << ", lps_plastic, after_force " << after;
+        }
+        EXPECT_TRUE(body.run_pmb(*set, false, false, false) == body.run_pmb(kernels_sse2, false, false, false))
+            << what << ", PMB without energy or breaking";
+        EXPECT_TRUE(body.run_pmb(*set, true, false, true) == pmb_ref) << what;
+        EXPECT_TRUE(body.run_lps(*set, false) == lps_ref) << what;
       }
-      EXPECT_TRUE(body.run_pmb(*set, false, false, false) == body.run_pmb(kernels_sse2, false, false, false))
-          << what << ", PMB without energy or breaking";
-      EXPECT_TRUE(body.run_pmb(*set, true, false, true) == pmb_ref) << what;
-      EXPECT_TRUE(body.run_lps(*set, false) == lps_ref) << what;
     }
+}
+
+// A state-only bond (pd/bond_state.hpp: a full-state transition particle's bond to a grid
+// particle) counts in its owner's dilatation as a live bond does and exchanges no force, as an
+// inactive one: LPS's θ is the all-live body's and its forces those of the body with these
+// bonds inactive, bit for bit, on every instruction set (no bond breaks in these calls).
+TEST(BondKernels, StateOnlyBondsCountInTheDilatationAndCarryNoForce) {
+  Body<2> state(true, true), live(true), inactive(true);
+  for (BondIndex b = 0; b < state.sys.families.n_bonds(); ++b)
+    if (state.sys.bonds.role(b) == BondRole::state_only) inactive.sys.bonds.set_role(b, BondRole::inactive);
+  auto evaluate = [](Body<2>& body, const KernelSet& set) {
+    Outputs out = body.fresh();
+    LpsArgs a = body.lps_args(out, false);
+    a.breaking = false;
+    set.lps_dilatation[1](a);
+    set.lps_forces[1][1](a);
+    return out;
+  };
+  auto same = [](const std::vector<double>& a, const std::vector<double>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof a[0]) == 0;
+  };
+  for (const KernelSet* set : runnable_sets()) {
+    const Outputs s = evaluate(state, *set), l = evaluate(live, *set), i = evaluate(inactive, *set);
+    EXPECT_TRUE(same(s.theta, l.theta)) << set->name;
+    EXPECT_TRUE(same(s.f, i.f)) << set->name;
+    EXPECT_FALSE(same(s.theta, i.theta)) << set->name << ": the state-only bonds must matter to θ";
+    EXPECT_FALSE(same(s.f, l.f)) << set->name << ": and would carry force if live";
   }
 }
 
