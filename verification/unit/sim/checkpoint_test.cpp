@@ -208,11 +208,15 @@ fields = ["displacement", "stress"]
 
 // Regions expand and shrink after the stop: the regions, tips and conversions continue.
 // The test plate pulled five times faster with a lower critical stretch, so its crack
-// runs within 300 steps (41 expansions, 40 shrinks).
-TEST(Checkpoint, HybridExpandShrinkResumesBitwise) {
+// runs within 300 steps (41 expansions, 40 shrinks). Both couplings: the full-state one
+// keeps state-only bonds, whose flags the checkpoint must carry.
+class CheckpointHybrid : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(CheckpointHybrid, ExpandShrinkResumesBitwise) {
   auto t = test::hybrid_plate_scene(
       "mode = \"expand_shrink\"\npd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n"
-      "audit_conversions = true\n",
+      "audit_conversions = true\ncoupling = \"" +
+          std::string(GetParam()) + "\"\n",
       "steps = 300");
   auto replace = [](std::string& text, const std::string& from, const std::string& to) {
     text.replace(text.find(from), from.size(), to);
@@ -229,6 +233,8 @@ TEST(Checkpoint, HybridExpandShrinkResumesBitwise) {
   for (const char* event : {"expansions", "shrinks", "to_pd", "to_mpm"})
     EXPECT_GT(s.whole["events"][event].get<std::int64_t>(), s.stopped["events"][event].get<std::int64_t>()) << event;
 }
+
+INSTANTIATE_TEST_SUITE_P(Checkpoint, CheckpointHybrid, ::testing::Values("paper", "full_state"));
 
 TEST(Checkpoint, PeriodicCheckpointsLeaveNoFileOnceTheRunEnds) {
   test::ScratchDir dir("periodic");
