@@ -38,36 +38,58 @@ double influence_moment(Influence w, int n, double delta) {
   const double k = n + 1.0;
   double unit = 0.0;  // ∫₀¹ ω(q) qⁿ dq
   switch (w) {
-    case Influence::constant: unit = 1.0 / k; break;
-    case Influence::triangular: unit = 1.0 / k - 1.0 / (k + 1.0); break;
-    case Influence::quadratic: unit = 1.0 / k - 2.0 / (k + 2.0) + 1.0 / (k + 4.0); break;
-    case Influence::semi_elliptical: unit = 1.0 / k - 1.0 / (k + 2.0); break;
-    case Influence::exponential: unit = exponential_unit_moment(n); break;
-    case Influence::gaussian: unit = gaussian_unit_moment(n); break;
-    case Influence::inverse_distance: unit = 1.0 / n; break;  // ω = δ/r
+    case Influence::constant:
+      unit = 1.0 / k;
+      break;
+    case Influence::triangular:
+      unit = 1.0 / k - 1.0 / (k + 1.0);
+      break;
+    case Influence::quadratic:
+      unit = 1.0 / k - 2.0 / (k + 2.0) + 1.0 / (k + 4.0);
+      break;
+    case Influence::semi_elliptical:
+      unit = 1.0 / k - 1.0 / (k + 2.0);
+      break;
+    case Influence::exponential:
+      unit = exponential_unit_moment(n);
+      break;
+    case Influence::gaussian:
+      unit = gaussian_unit_moment(n);
+      break;
+    case Influence::inverse_distance:  // ω = δ/r
+      unit = 1.0 / n;
+      break;
   }
   return unit * std::pow(delta, k);
 }
 
 double pmb_micromodulus(Influence w, core::Setting s, const core::Elastic& m, double delta, double measure) {
   switch (s) {
-    case core::Setting::bar1d: return m.E / (measure * influence_moment(w, 1, delta));
-    case core::Setting::plane_stress: return 2.0 * m.E / ((1.0 - m.nu) * pi * measure * influence_moment(w, 2, delta));
+    case core::Setting::bar1d:
+      return m.E / (measure * influence_moment(w, 1, delta));
+    case core::Setting::plane_stress:
+      return 2.0 * m.E / ((1.0 - m.nu) * pi * measure * influence_moment(w, 2, delta));
     case core::Setting::plane_strain:
       return 2.0 * m.E / ((1.0 + m.nu) * (1.0 - 2.0 * m.nu) * pi * measure * influence_moment(w, 2, delta));
-    case core::Setting::solid3d: return 3.0 * m.E / (2.0 * pi * (1.0 - 2.0 * m.nu) * influence_moment(w, 3, delta));
-    case core::Setting::uniaxial_strain: break;
+    case core::Setting::solid3d:
+      return 3.0 * m.E / (2.0 * pi * (1.0 - 2.0 * m.nu) * influence_moment(w, 3, delta));
+    case core::Setting::uniaxial_strain:
+      break;
   }
   not_a_pd_setting();
 }
 
 double lps_weighted_volume(Influence w, core::Setting s, double delta, double measure) {
   switch (s) {
-    case core::Setting::bar1d: return 2.0 * measure * influence_moment(w, 2, delta);
+    case core::Setting::bar1d:
+      return 2.0 * measure * influence_moment(w, 2, delta);
     case core::Setting::plane_stress:
-    case core::Setting::plane_strain: return 2.0 * pi * measure * influence_moment(w, 3, delta);
-    case core::Setting::solid3d: return 4.0 * pi * influence_moment(w, 4, delta);
-    case core::Setting::uniaxial_strain: break;
+    case core::Setting::plane_strain:
+      return 2.0 * pi * measure * influence_moment(w, 3, delta);
+    case core::Setting::solid3d:
+      return 4.0 * pi * influence_moment(w, 4, delta);
+    case core::Setting::uniaxial_strain:
+      break;
   }
   not_a_pd_setting();
 }
@@ -76,11 +98,15 @@ double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, do
                         double measure) {
   const double c = pmb_micromodulus(w, s, m, delta, measure);
   switch (s) {
-    case core::Setting::bar1d: return std::sqrt(2.0 * fracture_energy / (c * measure * influence_moment(w, 2, delta)));
+    case core::Setting::bar1d:
+      return std::sqrt(2.0 * fracture_energy / (c * measure * influence_moment(w, 2, delta)));
     case core::Setting::plane_stress:
-    case core::Setting::plane_strain: return std::sqrt(fracture_energy / (c * measure * influence_moment(w, 3, delta)));
-    case core::Setting::solid3d: return std::sqrt(2.0 * fracture_energy / (pi * c * influence_moment(w, 4, delta)));
-    case core::Setting::uniaxial_strain: break;
+    case core::Setting::plane_strain:
+      return std::sqrt(fracture_energy / (c * measure * influence_moment(w, 3, delta)));
+    case core::Setting::solid3d:
+      return std::sqrt(2.0 * fracture_energy / (pi * c * influence_moment(w, 4, delta)));
+    case core::Setting::uniaxial_strain:
+      break;
   }
   not_a_pd_setting();
 }
@@ -88,7 +114,8 @@ double critical_stretch(Influence w, core::Setting s, const core::Elastic& m, do
 LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
   const double G = m.shear();
   switch (s) {
-    case core::Setting::bar1d: return {0.0, m.E, 0.0, 0.0, 1};
+    case core::Setting::bar1d:
+      return {0.0, m.E, 0.0, 0.0, 1};
     case core::Setting::plane_stress:
     case core::Setting::plane_strain: {
       const double k2 = m.bulk_2d(s);
@@ -98,7 +125,8 @@ LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
       const double K = m.bulk();
       return {3.0 * K - 5.0 * G, 15.0 * G, K, 1.0 / 3.0, 3};
     }
-    case core::Setting::uniaxial_strain: break;
+    case core::Setting::uniaxial_strain:
+      break;
   }
   not_a_pd_setting();
 }
@@ -106,7 +134,8 @@ LpsCoefficients lps_coefficients(core::Setting s, const core::Elastic& m) {
 MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double delta, double measure) {
   const double mu = m.shear();
   switch (s) {
-    case core::Setting::bar1d: return {0.0, m.E / (2.0 * measure * std::pow(delta, 3)), 1.0 / (2.0 * measure * delta * delta)};
+    case core::Setting::bar1d:
+      return {0.0, m.E / (2.0 * measure * std::pow(delta, 3)), 1.0 / (2.0 * measure * delta * delta)};
     case core::Setting::plane_stress:
     case core::Setting::plane_strain: {
       const double kappa = m.bulk_2d(s);
@@ -116,7 +145,8 @@ MadenciOterkus madenci_oterkus(core::Setting s, const core::Elastic& m, double d
     case core::Setting::solid3d:
       return {0.5 * (m.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
-    case core::Setting::uniaxial_strain: break;
+    case core::Setting::uniaxial_strain:
+      break;
   }
   not_a_pd_setting();
 }

@@ -18,9 +18,9 @@
 namespace pdmpm {
 namespace {
 
+using core::Setting;
 using nlohmann::json;
 using pd::Influence;
-using core::Setting;
 namespace quad = pd::quadrature;
 
 constexpr double pi = std::numbers::pi;
@@ -34,7 +34,8 @@ constexpr double thickness = 1e-3;  // 2D plate thickness h
 constexpr double area = 1e-6;       // 1D bar cross-section A
 constexpr double G0 = 1000.0;       // fracture energy for the s₀ table (J/m²)
 
-const core::Setting all_settings[] = {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain, core::Setting::solid3d};
+const core::Setting all_settings[] = {core::Setting::bar1d, core::Setting::plane_stress, core::Setting::plane_strain,
+                                      core::Setting::solid3d};
 
 double measure_of(core::Setting s) {
   switch (s) {
@@ -92,10 +93,16 @@ TEST(FastConstants, MicromodulusClosedFormEqualsQuadrature) {
     }
     test::record_gate({.id = "constants.pmb_c.quadrature." + str(name(s)),
                        .claim = "The closed-form PMB micromodulus c shall equal c solved from the quadrature of W_PD = "
-                       "W_classical over the horizon for all 7 influence functions in setting " +
+                                "W_classical over the horizon for all 7 influence functions in setting " +
                            str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
-                       .source = "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp", .unit = "", .problem = "constants"});
+                       .measured = worst,
+                       .expected = 0.0,
+                       .tolerance = quadrature_tolerance,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason = quadrature_reason(worst_est),
+                       .source = "docs/models/pmb.md; [deryugin2023] eq 4.2–4.5 (energy matching); constants.hpp",
+                       .unit = "",
+                       .problem = "constants"});
   }
   test::record_data(
       "constants", "micromodulus",
@@ -123,12 +130,19 @@ TEST(FastConstants, WeightedVolumeClosedFormEqualsQuadrature) {
       worst_est = std::max(worst_est, q.relerr());
       rows.push_back({str(name(s)), str(name(w)), closed, q.value, d, q.relerr()});
     }
-    test::record_gate({.id = "constants.lps_m.quadrature." + str(name(s)),
-                       .claim = "The closed-form continuum LPS weighted volume m shall equal the quadrature of ∫_H ω|ξ|² dV "
-                       "for all 7 influence functions in setting " +
-                           str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
-                       .source = "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp", .unit = "", .problem = "constants"});
+    test::record_gate(
+        {.id = "constants.lps_m.quadrature." + str(name(s)),
+         .claim = "The closed-form continuum LPS weighted volume m shall equal the quadrature of ∫_H ω|ξ|² dV "
+                  "for all 7 influence functions in setting " +
+             str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
+         .measured = worst,
+         .expected = 0.0,
+         .tolerance = quadrature_tolerance,
+         .compare = test::Compare::abs,
+         .tolerance_reason = quadrature_reason(worst_est),
+         .source = "docs/models/lps.md; [silling2007] (m = ∫ ω|ξ|² dV); constants.hpp",
+         .unit = "",
+         .problem = "constants"});
   }
   test::record_data(
       "constants", "weighted_volume",
@@ -156,14 +170,20 @@ TEST(FastConstants, CriticalStretchClosedFormEqualsFractureEnergyQuadrature) {
       worst_est = std::max(worst_est, q.relerr());
       rows.push_back({str(name(s)), str(name(w)), mat.nu, closed, q.value, d, q.relerr()});
     }
-    test::record_gate({.id = "constants.s0.quadrature." + str(name(s)),
-                       .claim = "The closed-form critical stretch s₀(G₀) shall equal s₀ solved from the nested quadrature of "
-                       "the energy of all bonds crossing a unit crack area, for all 7 influence functions in setting " +
-                           str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
-                       .measured = worst, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs, .tolerance_reason = quadrature_reason(worst_est),
-                       .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
-                       "ω(ξ) kept inside the integral; constants.hpp",
-                       .unit = "", .problem = "constants"});
+    test::record_gate(
+        {.id = "constants.s0.quadrature." + str(name(s)),
+         .claim = "The closed-form critical stretch s₀(G₀) shall equal s₀ solved from the nested quadrature of "
+                  "the energy of all bonds crossing a unit crack area, for all 7 influence functions in setting " +
+             str(name(s)) + " (measured: worst relative difference, at ω = " + worst_w + ")",
+         .measured = worst,
+         .expected = 0.0,
+         .tolerance = quadrature_tolerance,
+         .compare = test::Compare::abs,
+         .tolerance_reason = quadrature_reason(worst_est),
+         .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ as the work to break the bonds across a crack), "
+                   "ω(ξ) kept inside the integral; constants.hpp",
+         .unit = "",
+         .problem = "constants"});
   }
   test::record_data(
       "constants", "critical_stretch",
@@ -226,13 +246,19 @@ TEST(FastConstants, Seed001Table42ReproducedExactly) {
     const double tol = table42_tolerance_eps(t.w) * eps;
     rows.push_back({str(name(t.w)), t.form, t.value, ours, d, d / eps, tol});
     test::record_gate({.id = "constants.seed001_table42." + str(name(t.w)),
-                       .claim = "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(name(t.w)) + ", " + t.form +
-                           ", shall equal our general formula c = 3E/(2π(1−2ν)I₃) to rounding",
-                       .measured = d, .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs,
-                       .tolerance_reason = "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
-                       "unit roundoffs per side plus the cancellation in the moments (polynomial ω ≤ 17×, Gaussian "
-                       "e/(e−2) ≈ 3.8×, exponential 3e/(3e−8) ≈ 53× on each side), see table42_tolerance_eps.",
-                       .source = "[deryugin2023] §4 eqs 4.6–4.17 and table 4.2", .unit = "", .problem = "constants"});
+                       .claim = "Deryugin et al. 2023 table 4.2's 3D micromodulus for ω = " + str(name(t.w)) + ", " +
+                           t.form + ", shall equal our general formula c = 3E/(2π(1−2ν)I₃) to rounding",
+                       .measured = d,
+                       .expected = 0.0,
+                       .tolerance = tol,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason =
+                           "Both sides are exact expressions evaluated in double; the bound is their rounding: ≤ 12 "
+                           "unit roundoffs per side plus the cancellation in the moments (polynomial ω ≤ 17×, Gaussian "
+                           "e/(e−2) ≈ 3.8×, exponential 3e/(3e−8) ≈ 53× on each side), see table42_tolerance_eps.",
+                       .source = "[deryugin2023] §4 eqs 4.6–4.17 and table 4.2",
+                       .unit = "",
+                       .problem = "constants"});
   }
   test::record_data(
       "constants", "seed001_table42",
@@ -258,17 +284,33 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double spec = 9.0 * E / (pi * thickness * delta * delta * delta);
     const double ours = pd::pmb_micromodulus(Influence::constant, core::Setting::plane_stress, mat, delta, thickness);
     rows.push_back({"c, plane stress (ν = 1/3)", "9E/(πhδ³)", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({.id = "constants.spec.c_plane_stress_constant",
-                       .claim = "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
-                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
+    test::record_gate(
+        {.id = "constants.spec.c_plane_stress_constant",
+         .claim = "The plane-stress constant-ω micromodulus shall equal the closed form's 9E/(πhδ³) (ν = 1/3)",
+         .measured = rel_diff(ours, spec),
+         .expected = 0.0,
+         .tolerance = tol,
+         .compare = test::Compare::abs,
+         .tolerance_reason = reason,
+         .source = "[deryugin2023] §4; docs/models/pmb.md",
+         .unit = "",
+         .problem = "constants"});
   }
   {
     const auto mat = pmb_material(core::Setting::bar1d);
     const double spec = 2.0 * E / (area * delta * delta);
     const double ours = pd::pmb_micromodulus(Influence::constant, core::Setting::bar1d, mat, delta, area);
     rows.push_back({"c, 1D bar", "2E/(Aδ²)", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({.id = "constants.spec.c_1d_constant", .claim = "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
-                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
+    test::record_gate({.id = "constants.spec.c_1d_constant",
+                       .claim = "The 1D constant-ω micromodulus shall equal the closed form's 2E/(Aδ²)",
+                       .measured = rel_diff(ours, spec),
+                       .expected = 0.0,
+                       .tolerance = tol,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason = reason,
+                       .source = "[deryugin2023] §4; docs/models/pmb.md",
+                       .unit = "",
+                       .problem = "constants"});
   }
   {
     const auto mat = pmb_material(core::Setting::solid3d);
@@ -276,25 +318,42 @@ TEST(FastConstants, SpecConstantInfluenceForms) {
     const double ours = pd::critical_stretch(Influence::constant, core::Setting::solid3d, mat, G0, delta, 1.0);
     rows.push_back({"s₀, 3D", "sqrt(5G₀/(9Kδ))", spec, ours, rel_diff(ours, spec)});
     test::record_gate({.id = "constants.spec.s0_3d_constant",
-                       .claim = "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))", .measured = rel_diff(ours, spec),
-                       .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ = πc s₀² δ⁵/10)",
-                       .unit = "", .problem = "constants"});
+                       .claim = "The 3D constant-ω critical stretch shall equal the closed form's sqrt(5G₀/(9Kδ))",
+                       .measured = rel_diff(ours, spec),
+                       .expected = 0.0,
+                       .tolerance = tol,
+                       .compare = test::Compare::abs,
+                       .tolerance_reason = reason,
+                       .source = "docs/models/pmb.md; [silling-askari2005] §4 (G₀ = πc s₀² δ⁵/10)",
+                       .unit = "",
+                       .problem = "constants"});
   }
   {
     const auto mat = pmb_material(core::Setting::plane_stress);
     const double spec = std::sqrt(4.0 * pi * G0 / (9.0 * E * delta));
-    const double ours = pd::critical_stretch(Influence::constant, core::Setting::plane_stress, mat, G0, delta, thickness);
+    const double ours =
+        pd::critical_stretch(Influence::constant, core::Setting::plane_stress, mat, G0, delta, thickness);
     rows.push_back({"s₀, plane stress (ν = 1/3)", "sqrt(4πG₀/(9Eδ))", spec, ours, rel_diff(ours, spec)});
-    test::record_gate({.id = "constants.spec.s0_plane_stress_constant",
-                       .claim = "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
-                       .measured = rel_diff(ours, spec), .expected = 0.0, .tolerance = tol, .compare = test::Compare::abs, .tolerance_reason = reason, .source = "[deryugin2023] §4; docs/models/pmb.md", .unit = "", .problem = "constants"});
+    test::record_gate(
+        {.id = "constants.spec.s0_plane_stress_constant",
+         .claim =
+             "The plane-stress constant-ω critical stretch shall equal the closed form's sqrt(4πG₀/(9Eδ)) (ν = 1/3)",
+         .measured = rel_diff(ours, spec),
+         .expected = 0.0,
+         .tolerance = tol,
+         .compare = test::Compare::abs,
+         .tolerance_reason = reason,
+         .source = "[deryugin2023] §4; docs/models/pmb.md",
+         .unit = "",
+         .problem = "constants"});
   }
-  test::record_data("constants", "spec_constant_forms",
-                    {{"kind", "table"},
-                     {"title", "Closed constant-ω forms vs the general formulas"},
-                     {"columns", {"quantity", "closed form", "closed-form value", "general formula", "rel. difference"}},
-                     {"rows", rows},
-                     {"caption", "E = 200 GPa, δ = 3.015 mm, h = 1 mm, A = 1 mm², G₀ = 1000 J/m²."}});
+  test::record_data(
+      "constants", "spec_constant_forms",
+      {{"kind", "table"},
+       {"title", "Closed constant-ω forms vs the general formulas"},
+       {"columns", {"quantity", "closed form", "closed-form value", "general formula", "rel. difference"}},
+       {"rows", rows},
+       {"caption", "E = 200 GPa, δ = 3.015 mm, h = 1 mm, A = 1 mm², G₀ = 1000 J/m²."}});
 }
 
 // ---------------------------------------------------------------------------
@@ -330,7 +389,8 @@ MoConstants madenci_oterkus_typed(core::Setting s, const core::Elastic& mat) {
     case core::Setting::solid3d:
       return {0.5 * (mat.bulk() - 5.0 * mu / 3.0), 15.0 * mu / (2.0 * pi * std::pow(delta, 5)),
               9.0 / (4.0 * pi * std::pow(delta, 4))};
-    case core::Setting::uniaxial_strain: break;  // MPM only
+    case core::Setting::uniaxial_strain:
+      break;  // MPM only
   }
   return {};
 }
@@ -372,7 +432,8 @@ double classical_energy(core::Setting s, const core::Elastic& mat, const quad::S
     case core::Setting::plane_strain:
     case core::Setting::solid3d:
       return 0.5 * lam * eps_t.trace() * eps_t.trace() + G * (eps_t.array() * eps_t.array()).sum();
-    case core::Setting::uniaxial_strain: break;  // MPM only
+    case core::Setting::uniaxial_strain:
+      break;  // MPM only
   }
   return 0.0;
 }
@@ -405,13 +466,17 @@ TEST(FastConstants, MadenciOterkusFormEqualsOurs) {
       const std::string load_id = load.name[0] == 'i' ? "isotropic" : "shear";
       test::record_gate({.id = "constants.madenci_oterkus." + str(name(s)) + "." + load_id,
                          .claim = "Madenci & Oterkus' LPS form (w = δ/|ξ|, their a, b, d) and ours (lps_coefficients, "
-                         "continuum m, ω = δ/|ξ|) shall give the same continuum energy density for " +
+                                  "continuum m, ω = δ/|ξ|) shall give the same continuum energy density for " +
                              std::string(load.name) + " in setting " + str(name(s)),
-                         .measured = d, .expected = 0.0, .tolerance = quadrature_tolerance, .compare = test::Compare::abs,
+                         .measured = d,
+                         .expected = 0.0,
+                         .tolerance = quadrature_tolerance,
+                         .compare = test::Compare::abs,
                          .tolerance_reason = quadrature_reason(std::max(mo_err / std::abs(W_mo), W_ours.relerr())),
                          .source = "[madenci-oterkus2014] ch. 4 and [madenci-oterkus2016] (JMPS "
-                         "86:192); [noorian] eqs 3–7; docs/models/lps.md",
-                         .unit = "", .problem = "constants"});
+                                   "86:192); [noorian] eqs 3–7; docs/models/lps.md",
+                         .unit = "",
+                         .problem = "constants"});
     }
   }
   test::record_data("constants", "madenci_oterkus",

@@ -83,7 +83,8 @@ BarResult run_bar(int cells, mpm::ShapeFunction shape, mpm::UpdateScheme scheme,
 }
 
 const char* kProblem = "mpm_bar_vibration";
-const char* kSource = "[sulsky-zhou-schreyer1995]; first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
+const char* kSource =
+    "[sulsky-zhou-schreyer1995]; first-mode solution of the fixed-free bar, v = v0 cos(wt) sin(pi x / 2L)";
 
 // Convergence in the cell size h (two particles per cell, CFL 0.1 so dt ∝ h).
 TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
@@ -109,27 +110,42 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
     }
     const double pu = mu::fitted_order(hs, eu), pv = mu::fitted_order(hs, ev);
     const std::string label = std::string(name(c.shape));
-    plot_series.push_back(mu::series(label + " u_cm (order " + std::to_string(pu).substr(0, 4) + ")", hs, eu, "points"));
-    plot_series.push_back(mu::series(label + " v_cm (order " + std::to_string(pv).substr(0, 4) + ")", hs, ev, "points"));
+    plot_series.push_back(
+        mu::series(label + " u_cm (order " + std::to_string(pu).substr(0, 4) + ")", hs, eu, "points"));
+    plot_series.push_back(
+        mu::series(label + " v_cm (order " + std::to_string(pv).substr(0, 4) + ")", hs, ev, "points"));
     if (!c.gated) continue;
     for (auto [what, order, errs] : {std::tuple{"u", pu, eu}, std::tuple{"v", pv, ev}}) {
-      test::record_gate(Gate{
-          .id = "mpm.bar_vibration." + label + ".order_" + what,
-          .claim = std::string("MUSL ") + label + " MPM shall converge in the centre-of-mass " +
-              (std::string(what) == "u" ? "displacement" : "velocity (half-step)") +
-              " of the vibrating bar at observed order ≥ 1.8 over 4 levels (h = L/8 … L/64)",
-          .measured = order, .expected = 1.8, .tolerance = 0.0, .compare = Compare::at_least,
-          .tolerance_reason = "second order expected (leapfrog in time with dt ∝ h, consistent mass-lumped linear interpolation "
-          "in space); 0.2 below for the pre-asymptotic coarse level",
-          .source = kSource, .unit = "", .problem = kProblem});
+      test::record_gate(
+          Gate{.id = "mpm.bar_vibration." + label + ".order_" + what,
+               .claim = std::string("MUSL ") + label + " MPM shall converge in the centre-of-mass " +
+                   (std::string(what) == "u" ? "displacement" : "velocity (half-step)") +
+                   " of the vibrating bar at observed order ≥ 1.8 over 4 levels (h = L/8 … L/64)",
+               .measured = order,
+               .expected = 1.8,
+               .tolerance = 0.0,
+               .compare = Compare::at_least,
+               .tolerance_reason =
+                   "second order expected (leapfrog in time with dt ∝ h, consistent mass-lumped linear interpolation "
+                   "in space); 0.2 below for the pre-asymptotic coarse level",
+               .source = kSource,
+               .unit = "",
+               .problem = kProblem});
       EXPECT_TRUE(mu::monotone_decreasing(errs)) << label << " " << what;
     }
-    test::record_gate(Gate{.id = "mpm.bar_vibration." + label + ".error_u_64",
-                           .claim = "MUSL " + label + " MPM with 64 cells shall match the exact centre-of-mass displacement to "
-                                             "within 0.1 % of its amplitude over one period",
-                           .measured = eu.back(), .expected = 1e-3, .tolerance = 0.0, .compare = Compare::at_most,
-                           .tolerance_reason = "0.1 % of the amplitude: the second-order trend from the coarse levels predicts 5e-4",
-                           .source = kSource, .unit = "", .problem = kProblem});
+    test::record_gate(
+        Gate{.id = "mpm.bar_vibration." + label + ".error_u_64",
+             .claim = "MUSL " + label +
+                 " MPM with 64 cells shall match the exact centre-of-mass displacement to "
+                 "within 0.1 % of its amplitude over one period",
+             .measured = eu.back(),
+             .expected = 1e-3,
+             .tolerance = 0.0,
+             .compare = Compare::at_most,
+             .tolerance_reason = "0.1 % of the amplitude: the second-order trend from the coarse levels predicts 5e-4",
+             .source = kSource,
+             .unit = "",
+             .problem = kProblem});
   }
   plot_series.push_back(mu::slope_line("slope 2", hs, 0.03, 2.0));
   test::record_data(kProblem, "01_convergence",
@@ -140,9 +156,10 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
                      {"xscale", "log"},
                      {"yscale", "log"},
                      {"series", plot_series},
-                     {"caption", "MUSL, two particles per cell, CFL 0.1. The B-spline runs use a mirror (symmetry) "
-                                 "boundary at the fixed end; with plain fixed nodes the quadratic B-spline is first "
-                                 "order (its support crosses the wall), see the table."}});
+                     {"caption",
+                      "MUSL, two particles per cell, CFL 0.1. The B-spline runs use a mirror (symmetry) "
+                      "boundary at the fixed end; with plain fixed nodes the quadratic B-spline is first "
+                      "order (its support crosses the wall), see the table."}});
   // The other update schemes and the B-spline with fixed nodes, for the record.
   for (auto scheme : {mpm::UpdateScheme::usl, mpm::UpdateScheme::usf})
     for (auto shape : {mpm::ShapeFunction::linear, mpm::ShapeFunction::gimp})
@@ -159,9 +176,10 @@ TEST(FastMpmBarVibration, ConvergesAtSecondOrderForLinearAndGimp) {
                      {"title", "Vibrating bar errors (one period)"},
                      {"columns", {"shape", "scheme", "cells", "u_cm error", "v_cm error", "max |E/E0 - 1|"}},
                      {"rows", rows},
-                     {"caption", "Errors relative to the amplitude. USF updates the stress with the velocity of "
-                                 "the previous step and is first order in dt (its error falls towards the USL value "
-                                 "as the CFL number is reduced). Velocities of USL/MUSL are compared at the half step."}});
+                     {"caption",
+                      "Errors relative to the amplitude. USF updates the stress with the velocity of "
+                      "the previous step and is first order in dt (its error falls towards the USL value "
+                      "as the CFL number is reduced). Velocities of USL/MUSL are compared at the half step."}});
 }
 
 // Energy: leapfrog conserves a modified energy; the plain kinetic + strain energy
@@ -170,13 +188,19 @@ TEST(FastMpmBarVibration, EnergyStaysWithinLeapfrogBound) {
   const int cells = 32;
   const BarResult r = run_bar(cells, mpm::ShapeFunction::gimp, mpm::UpdateScheme::musl, 0.1, false, 4.0);
   const double h = kL / cells, dt = 0.1 * h / std::sqrt(kE / kRho);
-  test::record_gate(Gate{.id = "mpm.bar_vibration.energy", 
-                         .claim = "GIMP/MUSL MPM shall keep the total energy of the vibrating bar within ω·dt (relative) of "
-                         "its initial value over four periods",
-                         .measured = r.energy_drift, .expected = kOmega * dt, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
-                         "factor 2 for the MPM transfers",
-                         .source = "[hairer2006] ch. IX", .unit = "", .problem = kProblem});
+  test::record_gate(Gate{
+      .id = "mpm.bar_vibration.energy",
+      .claim = "GIMP/MUSL MPM shall keep the total energy of the vibrating bar within ω·dt (relative) of "
+               "its initial value over four periods",
+      .measured = r.energy_drift,
+      .expected = kOmega * dt,
+      .tolerance = 0.0,
+      .compare = Compare::at_most,
+      .tolerance_reason = "leapfrog's energy error for a mode of frequency ω is ≤ ½ω dt (modified-energy argument); "
+                          "factor 2 for the MPM transfers",
+      .source = "[hairer2006] ch. IX",
+      .unit = "",
+      .problem = kProblem});
   test::record_data(kProblem, "04_energy",
                     {{"kind", "plot"},
                      {"title", "Vibrating bar: total energy / initial (GIMP, MUSL, 32 cells)"},

@@ -58,11 +58,11 @@ class ConvexPolygon final : public core::Shape<2> {
 };
 
 struct CookResult {
-  double tip = 0.0;          // u_y at the loaded edge's midpoint (48, 52) per unit load
-  double corner = 0.0;       // u_y at the corner C (48, 60) per unit load
-  double applied = 0.0;      // total applied force / nominal
+  double tip = 0.0;      // u_y at the loaded edge's midpoint (48, 52) per unit load
+  double corner = 0.0;   // u_y at the corner C (48, 60) per unit load
+  double applied = 0.0;  // total applied force / nominal
   int steps = 0;
-  double ke_ratio = 0.0;     // final kinetic / strain energy
+  double ke_ratio = 0.0;  // final kinetic / strain energy
 };
 
 CookResult run_cook(int cells_along_48, mpm::ShapeFunction shape, double damping, int max_steps, bool verbose = false,
@@ -151,23 +151,35 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
     plot.push_back(mu::series(std::string(name(shape)) + " (fitted order " + std::to_string(order).substr(0, 4) + ")",
                               hs, tips, "points"));
     if (shape == mpm::ShapeFunction::gimp) {
-      test::record_gate(Gate{.id = "mpm.cooks_membrane." + tag + ".gimp_tip",
-                             .claim = "GIMP MPM (USL, dynamic relaxation) with cell h = 48/" + std::to_string(cells.back()) +
-                                 " shall give the mid-edge deflection of Cook's membrane within 1 % of 23.96",
-                             .measured = tips.back(), .expected = kReference, .tolerance = 0.01, .compare = Compare::rel,
-                             .tolerance_reason = "1 %: the staircase particle boundary and the particle quadrature converge at about "
-                             "first order; the measured levels are within 0.6 %",
-                             .source = "[pian-sumihara1984]; [cook-malkus-plesha1989] (converged plane-stress value 23.96)",
-                             .unit = "", .problem = kProblem});
+      test::record_gate(
+          Gate{.id = "mpm.cooks_membrane." + tag + ".gimp_tip",
+               .claim = "GIMP MPM (USL, dynamic relaxation) with cell h = 48/" + std::to_string(cells.back()) +
+                   " shall give the mid-edge deflection of Cook's membrane within 1 % of 23.96",
+               .measured = tips.back(),
+               .expected = kReference,
+               .tolerance = 0.01,
+               .compare = Compare::rel,
+               .tolerance_reason = "1 %: the staircase particle boundary and the particle quadrature converge at about "
+                                   "first order; the measured levels are within 0.6 %",
+               .source = "[pian-sumihara1984]; [cook-malkus-plesha1989] (converged plane-stress value 23.96)",
+               .unit = "",
+               .problem = kProblem});
     }
     if (shape == mpm::ShapeFunction::linear) {
       EXPECT_TRUE(mu::monotone_decreasing(errs));
-      test::record_gate(Gate{.id = "mpm.cooks_membrane." + tag + ".linear_order",
-                             .claim = "linear MPM shall approach the Cook's membrane reference monotonically with observed "
-                             "order ≥ 0.8 in |u − 23.96| over " + std::to_string(cells.size()) + " levels",
-                             .measured = order, .expected = 0.8, .tolerance = 0.0, .compare = Compare::at_least,
-                             .tolerance_reason = "first order expected from the staircase representation of the slanted edges",
-                             .source = "[pian-sumihara1984] (reference value)", .unit = "", .problem = kProblem});
+      test::record_gate(
+          Gate{.id = "mpm.cooks_membrane." + tag + ".linear_order",
+               .claim = "linear MPM shall approach the Cook's membrane reference monotonically with observed "
+                        "order ≥ 0.8 in |u − 23.96| over " +
+                   std::to_string(cells.size()) + " levels",
+               .measured = order,
+               .expected = 0.8,
+               .tolerance = 0.0,
+               .compare = Compare::at_least,
+               .tolerance_reason = "first order expected from the staircase representation of the slanted edges",
+               .source = "[pian-sumihara1984] (reference value)",
+               .unit = "",
+               .problem = kProblem});
     }
   }
   plot.push_back(mu::series("reference 23.96", {hs.front(), hs.back()}, {kReference, kReference}, "dashed"));
@@ -179,9 +191,10 @@ void cook_study(const std::vector<int>& cells, const std::vector<mpm::ShapeFunct
                      {"xscale", "log"},
                      {"yscale", "linear"},
                      {"series", plot},
-                     {"caption", "Plane stress, E = 1, ν = 1/3, F = 1 (applied as 1e-4 and scaled: MPM is "
-                                 "geometrically nonlinear); two particles per cell per axis; static state by "
-                                 "mass-proportional grid damping 0.022/s ≈ twice the first natural frequency."}});
+                     {"caption",
+                      "Plane stress, E = 1, ν = 1/3, F = 1 (applied as 1e-4 and scaled: MPM is "
+                      "geometrically nonlinear); two particles per cell per axis; static state by "
+                      "mass-proportional grid damping 0.022/s ≈ twice the first natural frequency."}});
   test::record_data(kProblem, tag + "_2_table",
                     {{"kind", "table"},
                      {"title", "Cook's membrane deflection"},

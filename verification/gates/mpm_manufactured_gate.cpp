@@ -130,27 +130,42 @@ void convergence_study(const std::array<Axis, D>& axes, double nu, const std::ve
       rows.push_back({v.label, n, r.l2});
     }
     const double order = mu::fitted_order(hs, err);
-    plot.push_back(mu::series(std::string(v.label) + " (fitted order " + std::to_string(order).substr(0, 5) + ")", hs, err,
-                              "points"));
+    plot.push_back(mu::series(std::string(v.label) + " (fitted order " + std::to_string(order).substr(0, 5) + ")", hs,
+                              err, "points"));
     if (v.cpgimp) {
       order_cp = order;
       plot.push_back(mu::slope_line("slope 2", hs, err.front(), 2.0));
       EXPECT_TRUE(mu::monotone_decreasing(err)) << tag;
-      test::record_gate(Gate{.id = "mpm.manufactured." + tag + ".gimp_order",
-                             .claim = "GIMP MPM (MUSL, domains stretched with F) shall converge in the L2 displacement error of "
-                             "the " + title + " at observed order ≥ 1.7 over " + std::to_string(cells.size()) +
-                                 " levels (h = 1/" + std::to_string(cells.front()) + " … 1/" +
-                                 std::to_string(cells.back()) + ")",
-                             .measured = order, .expected = 1.7, .tolerance = 0.0, .compare = Compare::at_least,
-                             .tolerance_reason = "second order expected (exact quadrature of contiguous particle domains, leapfrog in time "
-                             "with dt ∝ h); the issue asks for ≥ 1.7",
-                             .source = source, .unit = "", .problem = kProblem});
-      test::record_gate(Gate{.id = "mpm.manufactured." + tag + ".gimp_error_finest",
-                             .claim = "GIMP MPM shall reproduce the " + title + " to an L2 displacement error below 1 % of the "
-                             "amplitude at h = 1/" + std::to_string(cells.back()),
-                             .measured = err.back(), .expected = 1e-2, .tolerance = 0.0, .compare = Compare::at_most,
-                             .tolerance_reason = "1 % of the amplitude; the measured second-order trend puts the finest level well below",
-                             .source = source, .unit = "", .problem = kProblem});
+      test::record_gate(
+          Gate{.id = "mpm.manufactured." + tag + ".gimp_order",
+               .claim = "GIMP MPM (MUSL, domains stretched with F) shall converge in the L2 displacement error of "
+                        "the " +
+                   title + " at observed order ≥ 1.7 over " + std::to_string(cells.size()) + " levels (h = 1/" +
+                   std::to_string(cells.front()) + " … 1/" + std::to_string(cells.back()) + ")",
+               .measured = order,
+               .expected = 1.7,
+               .tolerance = 0.0,
+               .compare = Compare::at_least,
+               .tolerance_reason =
+                   "second order expected (exact quadrature of contiguous particle domains, leapfrog in time "
+                   "with dt ∝ h); the issue asks for ≥ 1.7",
+               .source = source,
+               .unit = "",
+               .problem = kProblem});
+      test::record_gate(Gate{
+          .id = "mpm.manufactured." + tag + ".gimp_error_finest",
+          .claim = "GIMP MPM shall reproduce the " + title +
+              " to an L2 displacement error below 1 % of the "
+              "amplitude at h = 1/" +
+              std::to_string(cells.back()),
+          .measured = err.back(),
+          .expected = 1e-2,
+          .tolerance = 0.0,
+          .compare = Compare::at_most,
+          .tolerance_reason = "1 % of the amplitude; the measured second-order trend puts the finest level well below",
+          .source = source,
+          .unit = "",
+          .problem = kProblem});
     }
   }
   (void)order_cp;
@@ -162,14 +177,15 @@ void convergence_study(const std::array<Axis, D>& axes, double nu, const std::ve
                      {"xscale", "log"},
                      {"yscale", "log"},
                      {"series", plot},
-                     {"caption", "MUSL, CFL 0.1, two particles per cell per axis, one period 2/c. Linear MPM does "
-                                 "not converge: particles cross cell boundaries (the displacement amplitude is "
-                                 "several cells on the finer grids) and the jump of ∇S at a cell face makes the "
-                                 "internal force noisy (cell-crossing error), growing as h shrinks. uGIMP and the "
-                                 "B-spline remove the jump but not the quadrature error of particles that overlap "
-                                 "or leave gaps under ±30 % strain (in 1D their error stalls after h = 1/32 and then "
-                                 "grows); stretching the GIMP domains with F keeps them contiguous and restores "
-                                 "second order (Wallstedt & Guilkey 2008; Steffen, Kirby & Berzins 2008)."}});
+                     {"caption",
+                      "MUSL, CFL 0.1, two particles per cell per axis, one period 2/c. Linear MPM does "
+                      "not converge: particles cross cell boundaries (the displacement amplitude is "
+                      "several cells on the finer grids) and the jump of ∇S at a cell face makes the "
+                      "internal force noisy (cell-crossing error), growing as h shrinks. uGIMP and the "
+                      "B-spline remove the jump but not the quadrature error of particles that overlap "
+                      "or leave gaps under ±30 % strain (in 1D their error stalls after h = 1/32 and then "
+                      "grows); stretching the GIMP domains with F keeps them contiguous and restores "
+                      "second order (Wallstedt & Guilkey 2008; Steffen, Kirby & Berzins 2008)."}});
   test::record_data(kProblem, tag + "_errors",
                     {{"kind", "table"},
                      {"title", title + ": L2 displacement errors"},
@@ -180,9 +196,9 @@ void convergence_study(const std::array<Axis, D>& axes, double nu, const std::ve
 TEST(FastMpmManufactured, OneDimensionalNeoHookean) {
   // A = 0.1: F = 1 ± 0.31 (large deformation); ν = 0 (λ = 0), uniaxial strain.
   const std::array<Axis, 1> ax{Axis{0.1, M_PI, 0.0}};
-  convergence_study<1>(ax, 0.0, {8, 16, 32, 64, 128}, {8, 16, 32, 64, 128}, "1d",
-                       "1D manufactured solution u = A sin(πX) sin(cπt)",
-                       "[pdmpm] manufactured solution; neo-Hookean body force derived in the file header; [kamojjala2015]");
+  convergence_study<1>(
+      ax, 0.0, {8, 16, 32, 64, 128}, {8, 16, 32, 64, 128}, "1d", "1D manufactured solution u = A sin(πX) sin(cπt)",
+      "[pdmpm] manufactured solution; neo-Hookean body force derived in the file header; [kamojjala2015]");
 }
 
 TEST(FastMpmManufactured, AxisAlignedTwoDimensional) {

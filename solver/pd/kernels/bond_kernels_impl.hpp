@@ -47,6 +47,12 @@ inline m8 state_lanes(const FamilyView& fam, BondIndex b0, int count) {
   return lanes_zero_ignoring(fam.broken + b0, kStateOnlyFlag) & (lane_ids < count);
 }
 
+// The live lanes among a state pass's visited ones: only they may break (a state-only
+// bond belongs to the grid).
+inline m8 breakable_lanes(const FamilyView& fam, m8 visited, BondIndex b0, int count) {
+  return fam.state_only_bonds ? live_lanes(fam, b0, count) : visited;
+}
+
 // Which lanes a bond loop visits: the live ones (forces) or those of the state.
 enum class Lanes { live, state };
 template <Lanes Set>
@@ -224,8 +230,8 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
     Block<D> B;
     for_each_block<D, Lanes::state>(a, i, B, [&](auto, BondIndex b0, int count) {
       const Deformed<D> g = deform<D>(B);
-      const m8 live = fam.state_only_bonds ? live_lanes(fam, b0, count) : B.live;  // state-only bonds never break
-      const m8 breaks = breaking & live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+      const m8 breaks =
+          breaking & breakable_lanes(fam, B.live, b0, count) & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
       const m8 acts = B.live & ~breaks;
       acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
       newly += mark_broken(fam, b0, count, breaks);
@@ -305,9 +311,8 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
       Block<D> B;
       for_each_block<D, Lanes::state>(a, i, B, [&](auto, BondIndex b0, int count) {
         const Deformed<D> g = deform<D>(B);
-        // Only live bonds break: a state-only bond belongs to the grid.
-        const m8 live = fam.state_only_bonds ? live_lanes(fam, b0, count) : B.live;
-        const m8 breaks = breaking & live & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
+        const m8 breaks =
+            breaking & breakable_lanes(fam, B.live, b0, count) & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
         const m8 acts = B.live & ~breaks;
         const d8 e = g.num / (g.len + B.L);
         const d8 moment = keep(acts, B.wv * B.L * e);  // ω β |ξ| e V_j

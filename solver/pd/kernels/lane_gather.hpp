@@ -50,26 +50,22 @@ __attribute__((always_inline)) inline void gather_rows_wide(const double* base, 
 #endif
 }
 
-// Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
-inline m8 lanes_zero(const std::uint8_t* bytes) {
+// Eight bytes widened to eight 64-bit lanes.
+inline m8 widen_bytes(const std::uint8_t* bytes) {
 #if defined(__AVX512F__)  // (the maskz form: GCC 12's unmasked one warns on its undefined source)
-  const m8 v =
-      reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes))));
+  return reinterpret_cast<m8>(
+      _mm512_maskz_cvtepu8_epi64(0xFF, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes))));
 #else
-  const m8 v = {bytes[0], bytes[1], bytes[2], bytes[3], bytes[4], bytes[5], bytes[6], bytes[7]};
+  return m8{bytes[0], bytes[1], bytes[2], bytes[3], bytes[4], bytes[5], bytes[6], bytes[7]};
 #endif
-  return v == 0;
 }
+
+// Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
+inline m8 lanes_zero(const std::uint8_t* bytes) { return widen_bytes(bytes) == 0; }
 
 // The same for the bytes with the bits of `ignored` cleared.
 inline m8 lanes_zero_ignoring(const std::uint8_t* bytes, std::uint8_t ignored) {
-#if defined(__AVX512F__)
-  const m8 v =
-      reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes))));
-#else
-  const m8 v = {bytes[0], bytes[1], bytes[2], bytes[3], bytes[4], bytes[5], bytes[6], bytes[7]};
-#endif
-  return (v & static_cast<std::int64_t>(static_cast<std::uint8_t>(~ignored))) == 0;
+  return (widen_bytes(bytes) & static_cast<std::int64_t>(static_cast<std::uint8_t>(~ignored))) == 0;
 }
 
 }  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS
