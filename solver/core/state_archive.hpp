@@ -87,6 +87,14 @@ class StateArchive {
   std::vector<std::string> unread() const;
   bool contains(const std::string& name) const { return blocks_.count(name) > 0; }
 
+  // A saved archive as one to restore from, in memory: for running the same state
+  // more than once (benchmark samples that must all start alike).
+  StateArchive restorer() const {
+    StateArchive r(Mode::restore);
+    r.blocks_ = blocks_;
+    return r;
+  }
+
   // Writes the archive to `path` (the caller makes it atomic by writing a temporary
   // name and renaming); throws std::runtime_error naming the file on failure.
   void write(const std::filesystem::path& path) const;

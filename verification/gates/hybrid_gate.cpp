@@ -838,8 +838,8 @@ TEST(FastHybrid, PlaneWaveCrossesTheInterface) {
                       "Strip 30w × 16 mm, rollers on the long edges (uniaxial strain), Δx = 1 mm, δ = 3.015Δx, "
                       "cell 2Δx; PD band 5w wide; probes average v_x over the central 6 rows. Reflected: "
                       "largest difference hybrid − all-MPM at the probe before the band; transmitted error: "
-                      "the same after it (mostly the phase lead of PD, whose long-wave speed on this lattice "
-                      "is higher than the continuum's without lps_plastic's isotropy correction)."}});
+                      "the same after it (mostly the phase lead of PD, whose pulse runs 2.4 % faster than the "
+                      "continuum's long wave here; cause not identified, docs/models/hybrid.md)."}});
   test::record_data(kProblem, "06_wave_signals",
                     {{"kind", "plot"},
                      {"title", "Plane pulse (w = 8 mm) at the probe before the PD band"},

@@ -66,6 +66,26 @@ TEST(StateArchive, RestoresWhatWasSavedBitForBitThroughAFile) {
   EXPECT_TRUE(in.unread().empty());
 }
 
+TEST(StateArchive, AnInMemoryRestorerRestoresTheSameStateAsOftenAsAsked) {
+  Sample saved;
+  StateArchive out(StateArchive::Mode::save);
+  saved.sync(out);
+  const StateArchive in = out.restorer();
+  EXPECT_FALSE(in.saving());
+  for (int round = 0; round < 2; ++round) {  // each restore starts from the same blocks
+    StateArchive again = in;
+    Sample restored;
+    restored.values.assign(1, 9.0);
+    restored.count = round;
+    restored.sync(again);
+    EXPECT_TRUE(same_bits(restored.values, saved.values));
+    EXPECT_EQ(restored.vectors, saved.vectors);
+    EXPECT_EQ(restored.count, -7);
+    EXPECT_EQ(restored.text, saved.text);
+    EXPECT_TRUE(again.unread().empty());
+  }
+}
+
 TEST(StateArchive, AMissingOrMisfitBlockIsAMismatch) {
   StateArchive out(StateArchive::Mode::save);
   double x = 1.0;
