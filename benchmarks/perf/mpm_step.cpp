@@ -133,8 +133,8 @@ json mpm_step(const Options& o) {
       o.refine <= 1 ? std::vector<Case>{{2, 100}, {3, 20}} : std::vector<Case>{{2, 100}, {2, 200}, {3, 20}, {3, 40}};
   for (const Case& c : cases) {
     auto bodies = c.D == 2 ? make_bodies<2>(c.n) : make_bodies<3>(c.n);
-    fmt::print("MPM step: {}D, {} particles, {} steps per sample from step {}, {} repetitions, 1 and {} threads\n",
-               c.D, bodies[0]->particles, steps, o.mpm_warmup, o.reps, threads);
+    fmt::print("MPM step: {}D, {} particles, {} steps per sample from step {}, {} repetitions, 1 and {} threads\n", c.D,
+               bodies[0]->particles, steps, o.mpm_warmup, o.reps, threads);
     // Every sample starts from the state after the warm-up (Stepper's comment).
     omp_set_num_threads(threads);
     std::vector<core::StateArchive> start;

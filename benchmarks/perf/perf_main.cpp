@@ -45,7 +45,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 8));
   app.add_option("--reps", o.reps, "interleaved repetitions of every timing")->check(CLI::Range(1, 100));
   app.add_option("--steps", o.steps, "time steps per LAMMPS-comparison repetition")->check(CLI::Range(1, 100000));
-  app.add_option("--mpm-warmup", o.mpm_warmup, "steps of the MPM-step bodies before their samples, which all start there")
+  app.add_option("--mpm-warmup", o.mpm_warmup,
+                 "steps of the MPM-step bodies before their samples, which all start there")
       ->check(CLI::Range(0, 100000));
   app.add_option("--kernel-calls", o.kernel_calls, "force evaluations per kernel timing sample")
       ->check(CLI::Range(1, 1000));
@@ -69,8 +70,12 @@ int main(int argc, char** argv) {
     context["simd"] = pdmpm::pd::kernels::simd_level();
     context["cores"] = omp_get_num_procs();
     context["load_average_start"] = load_average();
-    context["options"] = {
-        {"refine", o.refine}, {"reps", o.reps}, {"steps", o.steps}, {"mpm_warmup", o.mpm_warmup}, {"kernel_calls", o.kernel_calls}, {"parts", parts}};
+    context["options"] = {{"refine", o.refine},
+                          {"reps", o.reps},
+                          {"steps", o.steps},
+                          {"mpm_warmup", o.mpm_warmup},
+                          {"kernel_calls", o.kernel_calls},
+                          {"parts", parts}};
     fmt::print("pdmpm_perf: results in {}/bench/perf (load average {})\n", o.results.string(), load_average());
     Collected c;
     // Memory first, while the process is small and nothing else is allocated.

@@ -839,7 +839,8 @@ TEST(FastHybrid, PlaneWaveCrossesTheInterface) {
                       "cell 2Δx; PD band 5w wide; probes average v_x over the central 6 rows. Reflected: "
                       "largest difference hybrid − all-MPM at the probe before the band; transmitted error: "
                       "the same after it (mostly the phase lead of PD, whose pulse runs 2.4 % faster than the "
-                      "continuum's long wave here; cause not identified, docs/models/hybrid.md)."}});
+                      "continuum's long wave in this strip: its edge layers, 0.6 % in a 48 mm strip; "
+                      "docs/models/hybrid.md)."}});
   test::record_data(kProblem, "06_wave_signals",
                     {{"kind", "plot"},
                      {"title", "Plane pulse (w = 8 mm) at the probe before the PD band"},
