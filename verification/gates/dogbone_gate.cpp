@@ -52,7 +52,7 @@ struct Curve {
   Json summary;          // the run's summary.json (particle-steps and wall time per phase)
   std::size_t peak = 0;  // index of the maximum load
   std::size_t failure = std::numeric_limits<std::size_t>::max();  // first history row with a failure
-  test::GateRun run;                                               // its outputs (history, fields.h5)
+  test::GateRun run;                                              // its outputs (history, fields.h5)
 };
 
 // Gauge section A₀ from the lattice: the sites across the parallel length times Δx times
@@ -432,7 +432,6 @@ TEST(FullDogbone, TimingTableOfTheThreeModes) {
             "The paper's abstract: 43 % saved on the tensile test."}});
 }
 
-
 // Angle (degrees, 0–90) between the load axis x and the principal axis of the points x
 // weighted by w (w > 0 counts): the direction of a band or a crack through them; NaN for
 // fewer than three points.
@@ -564,8 +563,8 @@ TEST(FullDogbone, FractureAtHalfTheSpacing) {
     }
     const bool failed_any = c.failure < c.t.size();
     return Json::array({run, c.S[c.peak] / 1e6, c.e[c.peak], failed_any ? c.first_failure * 1e3 : NAN,
-                        failed_any ? c.e[c.failure] : NAN, failed_any ? c.S[c.failure] / 1e6 : NAN,
-                        failures.back(), max_pd, max_tips});
+                        failed_any ? c.e[c.failure] : NAN, failed_any ? c.S[c.failure] / 1e6 : NAN, failures.back(),
+                        max_pd, max_tips});
   };
   test::record_data(
       kProblem, "06_fine_fracture",
@@ -575,11 +574,11 @@ TEST(FullDogbone, FractureAtHalfTheSpacing) {
         {"run", "S_max (MPa)", "e at S_max", "first failure (ms)", "e there", "S there (MPa)",
          "failed particles / onsets at the end", "largest PD particle count", "most tips at once"}},
        {"rows", Json::array({row("pure MPM", m, "failed_particles"), row("hybrid, expand/shrink", y, "onsets")})},
-       {"caption", "Considère: S_max = " + std::to_string(h.max_stress() / 1e6).substr(0, 5) +
-                       " MPa at e = " + std::to_string(h.considere_strain()).substr(0, 5) +
-                       ". Crack (the MPM run's failed particles): " +
-                       std::to_string(crack_angle).substr(0, 4) + "° at x₀ = " + std::to_string(crack_x * 1e3).substr(0, 4) +
-                       " mm (the gauge ends at 90.5 mm). Hill: 54.7°; the paper: ≈ 45°."}});
+       {"caption",
+        "Considère: S_max = " + std::to_string(h.max_stress() / 1e6).substr(0, 5) + " MPa at e = " +
+            std::to_string(h.considere_strain()).substr(0, 5) + ". Crack (the MPM run's failed particles): " +
+            std::to_string(crack_angle).substr(0, 4) + "° at x₀ = " + std::to_string(crack_x * 1e3).substr(0, 4) +
+            " mm (the gauge ends at 90.5 mm). Hill: 54.7°; the paper: ≈ 45°."}});
 }
 
 }  // namespace
