@@ -28,7 +28,23 @@ std::optional<Mat<D>> bond_deformation_gradient(const pd::System<D>& sys, Index 
 template <int D>
 void to_pd(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>& model, Index i);
 
+// The grid's elastic strain of particle i (3×3, reference frame): ln U − ε_p, with ε_zz the
+// grid's out-of-plane strain in 2D.
+template <int D>
+Mat<3> grid_elastic_strain(const mpm::Simulation<D>& mpm, Index i);
+
+// MPM → PD with hybrid.plastic_transfer = "elastic_state" (plastic_state_transfer.hpp); after
+// the bonds' roles are refreshed for the particle's new kind.
+template <int D>
+void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>& model, Index i);
+
 template <int D>
 void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i);
+
+// PD → MPM with hybrid.plastic_transfer = "elastic_state": F from the bonds as to_mpm, and the
+// plastic strain ln U − ε_e (in-plane in 2D, ε_p,zz from tr ε_p = 0) with ε_e the PD state's
+// elastic strain (plastic_state_transfer.hpp), so the grid's law gives the PD state's stress.
+template <int D>
+void to_mpm_elastic_state(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i);
 
 }  // namespace pdmpm::hybrid

@@ -88,6 +88,45 @@ void carry_plastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& mo
 }
 
 template <int D>
+void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i, const Mat<3>& eps_e,
+                                 double eq_plastic) {
+  const auto& p = sys.particles;
+  const auto [theta, theta_c] = model.current_dilatations(sys, i);
+  // The bonds see the deviator (bond_plastic_extension takes the in-plane one itself in 2D).
+  const Mat<3> dev = D == 3 ? Mat<3>(eps_e - eps_e.trace() / 3.0 * Mat<3>::Identity()) : eps_e;
+  const Vec<D> yi = p.position(i);
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+    const int k = sys.families.shape[b];
+    const double L = sys.table.length[k];
+    const double e = (p.position(sys.families.neighbor[b]) - yi).norm() - L;
+    model.set_plastic_extension(
+        b, e - model.split_factor() * theta_c * L - bond_plastic_extension<D>(dev, sys.table.xi[k]));
+  }
+  const double q_e = (eps_e(0, 0) + eps_e(1, 1) - 2.0 * eps_e(2, 2)) / 6.0;
+  model.set_particle_plastic_state(i, model.axial_plastic_for(theta, q_e), eq_plastic);
+}
+
+template <int D>
+std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i) {
+  const auto& p = sys.particles;
+  const auto [theta, theta_c] = model.current_dilatations(sys, i);
+  const Vec<D> yi = p.position(i);
+  std::vector<Vec<D>> xi;
+  std::vector<double> w, elastic;
+  sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
+    const double L = sys.table.length[k];
+    xi.push_back(sys.table.xi[k]);
+    w.push_back(sys.table.weight[k] * p.volume[j]);
+    elastic.push_back((p.position(j) - yi).norm() - L - model.split_factor() * theta_c * L -
+                      model.plastic_extension(b));
+  });
+  const double q_e = model.axial_elastic_for(theta, model.axial_plastic_strain(i));
+  const std::optional<Mat<3>> dev = fit_plastic_strain<D>(xi, w, elastic, q_e);
+  if (!dev) return std::nullopt;
+  return Mat<3>(*dev + model.volumetric_elastic_for(theta, q_e) / 3.0 * Mat<3>::Identity());
+}
+
+template <int D>
 std::optional<mpm::PointHistory> plastic_state_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model,
                                                        Index i) {
   std::vector<Vec<D>> xi;
@@ -107,6 +146,10 @@ std::optional<mpm::PointHistory> plastic_state_from_pd(const pd::System<D>& sys,
 
 template void carry_plastic_state_into_pd<2>(const pd::System<2>&, pd::LpsPlastic<2>&, Index, const mpm::PointHistory&);
 template void carry_plastic_state_into_pd<3>(const pd::System<3>&, pd::LpsPlastic<3>&, Index, const mpm::PointHistory&);
+template void carry_elastic_state_into_pd<2>(const pd::System<2>&, pd::LpsPlastic<2>&, Index, const Mat<3>&, double);
+template void carry_elastic_state_into_pd<3>(const pd::System<3>&, pd::LpsPlastic<3>&, Index, const Mat<3>&, double);
+template std::optional<Mat<3>> elastic_strain_from_pd<2>(const pd::System<2>&, const pd::LpsPlastic<2>&, Index);
+template std::optional<Mat<3>> elastic_strain_from_pd<3>(const pd::System<3>&, const pd::LpsPlastic<3>&, Index);
 template std::optional<mpm::PointHistory> plastic_state_from_pd<2>(const pd::System<2>&, const pd::LpsPlastic<2>&,
                                                                    Index);
 template std::optional<mpm::PointHistory> plastic_state_from_pd<3>(const pd::System<3>&, const pd::LpsPlastic<3>&,

@@ -41,6 +41,26 @@ template <int D>
 void carry_plastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i,
                                  const mpm::PointHistory& history);
 
+// MPM → PD at the particle's current bond geometry (hybrid.plastic_transfer =
+// "elastic_state"): p on every bond side of i and q_p (2D) such that its PD elastic state is
+// the grid's elastic strain ε_e (small, reference frame) whatever the finite strain it sits at:
+//   e_b − γθ_c|ξ| − p_b = |ξ| n·dev ε_e·n  (dev: the in-plane deviator in 2D),
+//   q_e = (tr₂ ε_e − 2 ε_e,zz)/6  (2D). In plane stress that is all of it (ε_zz takes up the
+//   geometric dilatation); in plane strain and 3D no plastic volume variable does, so only the
+//   deviatoric part is made consistent there;
+// ε̄_p as the grid's. θ and θ_c are the model's over the particle's state bonds: call it after
+// the bonds' roles are refreshed for the particle's new kind.
+template <int D>
+void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i, const Mat<3>& eps_e,
+                                 double eq_plastic);
+
+// PD → MPM (elastic_state), the inverse: the elastic strain of particle i's PD state at its
+// current bond geometry — the deviator fitted over its live bonds' elastic parts
+// e − γθ_c|ξ| − p (with q_e in 2D) plus a third of the volume change θ + ε_zz. Empty when the
+// live bonds do not determine the deviator.
+template <int D>
+std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i);
+
 // PD → MPM: particle i's plastic state fitted over its live bonds, with its ε̄_p. Empty
 // when its live bonds do not determine the deviator (the caller decides what to carry).
 template <int D>

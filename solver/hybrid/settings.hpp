@@ -28,9 +28,21 @@ constexpr std::array<EnumName<Coupling>, 2> names(Coupling) {
   return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}}};
 }
 
+// What an MPM particle turned PD carries of its plastic state (plastic_state_transfer.hpp).
+// strain: its plastic strain, as each bond's plastic extension p = |ξ| n·ε_p·n — right at
+// small strain only (the grid's is a log strain, the bonds' extensions are not: at 5 %
+// strain a round trip moves the stress by its own size). elastic_state: the plastic state
+// that gives the particle, at its current bond geometry, the grid's elastic strain — no
+// spurious stress at any strain (plane strain and 3D: the deviatoric part; docs/models/hybrid.md).
+enum class PlasticTransfer { strain, elastic_state };
+constexpr std::array<EnumName<PlasticTransfer>, 2> names(PlasticTransfer) {
+  return {{{PlasticTransfer::strain, "strain"}, {PlasticTransfer::elastic_state, "elastic_state"}}};
+}
+
 struct Settings {
   Mode mode = Mode::expand_shrink;
   Coupling coupling = Coupling::paper;
+  PlasticTransfer plastic_transfer = PlasticTransfer::strain;
   RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
   int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
   CrackTipSettings tips;

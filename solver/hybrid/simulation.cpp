@@ -215,7 +215,7 @@ template <int D>
 void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
   auto& p = pd_.particles();
   auto& sys = pd_.system();
-  std::vector<Index> changed;
+  std::vector<Index> changed, into_pd;
   for (Index i = 0; i < p.n_real; ++i) {
     const ParticleKind was = before[i], now = p.kind[i];
     if (was == now) continue;
@@ -223,16 +223,24 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
     if (now == ParticleKind::removed) continue;
     if (now == ParticleKind::pd) {
       to_pd<D>(mpm_, sys, pd_.model(), i);
+      into_pd.push_back(i);
       ++events_.to_pd;
     } else if (was == ParticleKind::pd) {
-      to_mpm<D>(sys, pd_.model(), mpm_, i);
+      if (settings_.plastic_transfer == PlasticTransfer::elastic_state)
+        to_mpm_elastic_state<D>(sys, pd_.model(), mpm_, i);
+      else
+        to_mpm<D>(sys, pd_.model(), mpm_, i);
       ++events_.to_mpm;
     } else if (now == ParticleKind::transition && sys.transition_full_state) {
       to_pd<D>(mpm_, sys, pd_.model(), i);  // its whole-family PD state starts from the grid's plastic state
+      into_pd.push_back(i);
     }
   }
   if (changed.empty()) return;
   pd_.refresh_kinds(changed);
+  // The elastic-state transfer reads the particle's state bonds, so after the refresh.
+  if (settings_.plastic_transfer == PlasticTransfer::elastic_state)
+    for (const Index i : into_pd) to_pd_elastic_state<D>(mpm_, sys, pd_.model(), i);
   mpm_.refresh_active();
 }
 

@@ -43,6 +43,7 @@ void read_hybrid(const TomlReader& t, Scene& s) {
   hybrid::Settings h;
   if (auto v = t.optional_enum<hybrid::Mode>("mode")) h.mode = *v;
   if (auto v = t.optional_enum<hybrid::Coupling>("coupling")) h.coupling = *v;
+  if (auto v = t.optional_enum<hybrid::PlasticTransfer>("plastic_transfer")) h.plastic_transfer = *v;
   auto number = [&t](const char* key, double& field) {
     if (auto v = t.optional_number(key)) field = *v;
   };

@@ -341,6 +341,41 @@ void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta)
 }
 
 template <int D>
+std::pair<double, double> LpsPlastic<D>::current_dilatations(const System<D>& sys, Index i) const {
+  const auto& p = sys.particles;
+  const Vec<D> yi = p.position(i);
+  double theta = 0.0, theta_c = 0.0;
+  sys.for_each_bond(i, BondSet::state, [&](BondIndex, Index j, int k) {
+    const double L = sys.table.length[k];
+    const double w = sys.table.weight[k] * p.volume[j] * L * ((p.position(j) - yi).norm() - L);
+    theta += w;
+    theta_c += shell_[k] * w;
+  });
+  return {k_.d * inv_m_[i] * theta, k_.d * inv_md_[i] * theta_c};
+}
+
+template <int D>
+double LpsPlastic<D>::axial_plastic_for(double theta, double q_e) const {
+  if constexpr (D != 2) return 0.0;
+  const bool plane_stress = setting_ == core::Setting::plane_stress;
+  const double a = plane_stress ? 4.0 * shear_ / (3.0 * bulk_) : 0.0;
+  return (plane_stress ? 0.5 : 1.0 / 6.0) * theta - q_e * (1.0 + a);
+}
+
+template <int D>
+double LpsPlastic<D>::axial_elastic_for(double theta, double q_p) const {
+  if constexpr (D != 2) return 0.0;
+  const bool plane_stress = setting_ == core::Setting::plane_stress;
+  const double a = plane_stress ? 4.0 * shear_ / (3.0 * bulk_) : 0.0;
+  return ((plane_stress ? 0.5 : 1.0 / 6.0) * theta - q_p) / (1.0 + a);
+}
+
+template <int D>
+double LpsPlastic<D>::volumetric_elastic_for(double theta, double q_e) const {
+  return D == 2 && setting_ == core::Setting::plane_stress ? 4.0 * shear_ * q_e / bulk_ : theta;
+}
+
+template <int D>
 double LpsPlastic<D>::stiffness_row_sum(const System<D>& sys, Index i) const {
   // The elastic bound (plastic flow only softens the bonds): the direct term B c ω β (1/m_d,i + 1/m_d,j),
   // the coupling through θ_c, d γ B c ω β (1/m_d,i + 1/m_d,j), and through θ, d·dκ ω β (1/m_i + 1/m_j)

@@ -94,6 +94,20 @@ class LpsPlastic final : public Model<D> {
   void set_plastic_extension(BondIndex b, double p) {
     plastic_ext_.trial[b] = plastic_ext_.committed[b] = reverse_plastic_[reverse_[b]] = p;
   }
+  // Particle i's dilatations at the current positions over the bonds of its state, as the
+  // next evaluation forms them: θ (the volumetric term's) and θ_c (the deviatoric split's).
+  std::pair<double, double> current_dilatations(const System<D>& sys, Index i) const;
+  // γ of the deviatoric extension e^d = e − γθ_c|ξ| (1/3 in 3D, 1/2 in 2D).
+  double split_factor() const { return k_.gamma; }
+  // 2D: the q_p that gives the elastic axial deviator q_e at dilatation θ (the elastic
+  // q_e = (cθ − q_p)/(1 + a), c = ½ and a = 4G/3K in plane stress, c = ⅙ and a = 0 in
+  // plane strain); 0 in 3D.
+  double axial_plastic_for(double theta, double q_e) const;
+  // Its inverse: the elastic q_e at dilatation θ with plastic q_p (0 in 3D).
+  double axial_elastic_for(double theta, double q_p) const;
+  // The elastic volume change θ + ε_zz at dilatation θ and elastic axial deviator q_e:
+  // 4G q_e/K in plane stress (σ_zz = 0), θ in plane strain and 3D.
+  double volumetric_elastic_for(double theta, double q_e) const;
   void set_particle_plastic_state(Index i, double q_p, double eq_plastic) {
     if constexpr (D == 2) axial_plastic_.trial[i] = axial_plastic_.committed[i] = q_p;
     eq_plastic_.trial[i] = eq_plastic_.committed[i] = eq_plastic;

@@ -179,6 +179,7 @@ CASES = {
     "hybrid_pmb_model": ("model.type | needs the PD model in [model]", hybrid('type = "lps_plastic"', 'type = "pmb"')),
     "hybrid_unknown_mode": ("hybrid.mode | must be one of pd, expand, expand_shrink", hybrid("[hybrid]\n", '[hybrid]\nmode = "grow"\n')),
     "hybrid_unknown_coupling": ("hybrid.coupling | must be one of paper, full_state", hybrid("[hybrid]\n", '[hybrid]\ncoupling = "consistent"\n')),
+    "hybrid_unknown_plastic_transfer": ("hybrid.plastic_transfer | must be one of strain, elastic_state", hybrid("[hybrid]\n", '[hybrid]\nplastic_transfer = "finite"\n')),
     "hybrid_zero_radius": ("hybrid.pd_radius | must be a positive, finite number of horizons", hybrid("[hybrid]\n", "[hybrid]\npd_radius = 0\n")),
     "hybrid_negative_keep_radius": ("hybrid.keep_radius | must be a positive, finite number of horizons", hybrid("[hybrid]\n", "[hybrid]\nkeep_radius = -2\n")),
     "hybrid_trigger_above_radius": ("hybrid.expand_trigger | must be smaller than hybrid.expand_radius", hybrid("[hybrid]\n", "[hybrid]\nexpand_trigger = 7\nexpand_radius = 7\n")),

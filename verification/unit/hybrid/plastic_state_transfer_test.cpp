@@ -154,5 +154,47 @@ TEST(PlasticStateTransfer, CarriedStateGivesTheElasticStressOfTheRemainingStrain
   carried_state_gives_the_elastic_stress<2>(core::Setting::plane_stress);
 }
 
+// The elastic-state transfer (hybrid.plastic_transfer = "elastic_state") at finite strain:
+// a block stretched by F = I + H (λ = 1.9 along x, 0.73 across, a shear), every particle
+// given the elastic strain ε_e at that geometry, reads back ε_e at the centre — all of it in
+// plane stress (where ε_zz takes up the geometric dilatation; ε_e a plane-stress state,
+// σ_zz = 0), its deviator in plane strain and 3D (no plastic volume variable takes it up).
+template <int D>
+void elastic_state_round_trip(core::Setting setting) {
+  test::PlasticBlockSpec spec;
+  spec.setting = setting;
+  test::PlasticBlock<D> block(spec);
+  Mat<D> H = Mat<D>::Zero();
+  H(0, 0) = 0.9;
+  H(1, 1) = -0.27;
+  H(0, 1) = 0.1;
+  if constexpr (D == 3) H(2, 2) = -0.27;
+  block.apply_affine(H);
+  Mat<3> eps_e = Mat<3>::Zero();  // a small elastic strain, as the grid's would be
+  eps_e(0, 0) = 1.2e-3;
+  eps_e(1, 1) = -0.4e-3;
+  eps_e(0, 1) = eps_e(1, 0) = 0.3e-3;
+  const double nu = spec.material.nu;
+  eps_e(2, 2) = setting == core::Setting::plane_stress ? -nu / (1.0 - nu) * (eps_e(0, 0) + eps_e(1, 1)) : -0.5e-3;
+  for (Index i = 0; i < block.sys.n_real(); ++i) carry_elastic_state_into_pd<D>(block.sys, block.model, i, eps_e, 0.7);
+  const auto back = elastic_strain_from_pd<D>(block.sys, block.model, block.centre);
+  ASSERT_TRUE(back.has_value());
+  auto dev = [](const Mat<3>& e) { return Mat<3>(e - e.trace() / 3.0 * Mat<3>::Identity()); };
+  // 1e-9 of |ε_e|: the bond extensions are O(1) here, and ε_e (~1e-3) is their difference
+  // with the geometric part, so round-off of O(1) terms (1e-16) is 1e-13 of ε_e; the fit adds
+  // its condition number (≤ 10).
+  EXPECT_LT((dev(*back) - dev(eps_e)).norm(), 1e-9 * eps_e.norm()) << static_cast<int>(setting);
+  if (setting == core::Setting::plane_stress) {
+    EXPECT_LT((*back - eps_e).norm(), 1e-9 * eps_e.norm());
+  }
+  EXPECT_EQ(block.model.committed_eq_plastic_strain(block.centre), 0.7);
+}
+
+TEST(PlasticStateTransfer, ElasticStateTransferReadsBackTheElasticStrainAtFiniteStrain) {
+  elastic_state_round_trip<2>(core::Setting::plane_stress);
+  elastic_state_round_trip<2>(core::Setting::plane_strain);
+  elastic_state_round_trip<3>(core::Setting::solid3d);
+}
+
 }  // namespace
 }  // namespace pdmpm::hybrid
