@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "solver/pd/bond_kinematics.hpp"
+
 namespace pdmpm::hybrid {
 
 namespace {
@@ -87,20 +89,31 @@ void carry_plastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& mo
                                    history.eq_plastic_strain);
 }
 
+namespace {
+
+// e − γθ_c|ξ| of the bond i → j of stencil offset k at the current displacements: the
+// deviatoric extension lps_plastic's force state forms (e without cancellation, as its kernels).
+template <int D>
+double deviatoric_extension(const pd::System<D>& sys, double gamma_theta_c, Index i, Index j, int k) {
+  const auto& t = sys.table;
+  const auto& p = sys.particles;
+  return pd::deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]).e - gamma_theta_c * t.length[k];
+}
+
+}  // namespace
+
 template <int D>
 void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& model, Index i, const Mat<3>& eps_e,
                                  double eq_plastic) {
-  const auto& p = sys.particles;
   const auto [theta, theta_c] = model.current_dilatations(sys, i);
   // The bonds see the deviator (bond_plastic_extension takes the in-plane one itself in 2D).
   const Mat<3> dev = D == 3 ? Mat<3>(eps_e - eps_e.trace() / 3.0 * Mat<3>::Identity()) : eps_e;
-  const Vec<D> yi = p.position(i);
   for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
     const int k = sys.families.shape[b];
-    const double L = sys.table.length[k];
-    const double e = (p.position(sys.families.neighbor[b]) - yi).norm() - L;
     model.set_plastic_extension(
-        b, e - model.split_factor() * theta_c * L - bond_plastic_extension<D>(dev, sys.table.xi[k]));
+        b,
+        deviatoric_extension<D>(sys, model.split_factor() * theta_c, i, sys.families.neighbor[b], k) -
+            bond_plastic_extension<D>(dev, sys.table.xi[k]));
   }
   const double q_e = (eps_e(0, 0) + eps_e(1, 1) - 2.0 * eps_e(2, 2)) / 6.0;
   model.set_particle_plastic_state(i, model.axial_plastic_for(theta, q_e), eq_plastic);
@@ -108,16 +121,13 @@ void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& mo
 
 template <int D>
 std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i) {
-  const auto& p = sys.particles;
   const auto [theta, theta_c] = model.current_dilatations(sys, i);
-  const Vec<D> yi = p.position(i);
   std::vector<Vec<D>> xi;
   std::vector<double> w, elastic;
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
-    const double L = sys.table.length[k];
     xi.push_back(sys.table.xi[k]);
-    w.push_back(sys.table.weight[k] * p.volume[j]);
-    elastic.push_back((p.position(j) - yi).norm() - L - model.split_factor() * theta_c * L -
+    w.push_back(sys.table.weight[k] * sys.particles.volume[j]);
+    elastic.push_back(deviatoric_extension<D>(sys, model.split_factor() * theta_c, i, j, k) -
                       model.plastic_extension(b));
   });
   const double q_e = model.axial_elastic_for(theta, model.axial_plastic_strain(i));

@@ -342,16 +342,8 @@ void LpsPlastic<D>::dilatation(const System<D>& sys, std::vector<double>& theta)
 
 template <int D>
 std::pair<double, double> LpsPlastic<D>::current_dilatations(const System<D>& sys, Index i) const {
-  const auto& p = sys.particles;
-  const Vec<D> yi = p.position(i);
-  double theta = 0.0, theta_c = 0.0;
-  sys.for_each_bond(i, BondSet::state, [&](BondIndex, Index j, int k) {
-    const double L = sys.table.length[k];
-    const double w = sys.table.weight[k] * p.volume[j] * L * ((p.position(j) - yi).norm() - L);
-    theta += w;
-    theta_c += shell_[k] * w;
-  });
-  return {k_.d * inv_m_[i] * theta, k_.d * inv_md_[i] * theta_c};
+  const double md = inv_md_[i] > 0.0 ? 1.0 / inv_md_[i] : 0.0;
+  return {dilatation_of(sys, i, m_[i]), dilatation_of(sys, i, md, shell_.data())};
 }
 
 template <int D>

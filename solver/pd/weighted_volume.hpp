@@ -32,15 +32,18 @@ std::vector<double> reference_weighted_volumes(const System<D>& sys) {
   return m;
 }
 
+// With `shape_weight` (a factor per stencil offset, lps_plastic's isotropy weights c) the
+// dilatation in those weights, m_i then being theirs too (θ_c of docs/models/lps_plastic.md).
 template <int D>
-double dilatation_of(const System<D>& sys, Index i, double m_i) {
+double dilatation_of(const System<D>& sys, Index i, double m_i, const double* shape_weight = nullptr) {
   if (m_i <= 0.0) return 0.0;
   const auto& t = sys.table;
   const auto& p = sys.particles;
   double sum = 0.0;
   sys.for_each_bond(i, BondSet::state, [&](BondIndex, Index j, int k) {
     const auto bond = deform<D>(t.xi[k], t.length[k], p.u[j] - p.u[i]);
-    sum += t.weight[k] * t.length[k] * bond.e * p.volume[j];
+    const double w = shape_weight ? shape_weight[k] * t.weight[k] : t.weight[k];
+    sum += w * t.length[k] * bond.e * p.volume[j];
   });
   return D * sum / m_i;
 }

@@ -49,10 +49,9 @@ struct Curve {
   std::vector<double> t, e, S, kinetic, internal;
   double first_failure = std::numeric_limits<double>::infinity();
   double wall = 0.0;
-  Json summary;          // the run's summary.json (particle-steps and wall time per phase)
-  std::size_t peak = 0;  // index of the maximum load
+  std::size_t peak = 0;                                           // index of the maximum load
   std::size_t failure = std::numeric_limits<std::size_t>::max();  // first history row with a failure
-  test::GateRun run;                                              // its outputs (history, fields.h5)
+  test::GateRun run;  // its outputs: summary.json (particle-steps, wall time per phase), history, fields.h5
 };
 
 // Gauge section A₀ from the lattice: the sites across the parallel length times Δx times
@@ -69,7 +68,6 @@ Curve run_curve(const io::Scene& scene, const std::string& tag, bool mpm) {
   Curve c;
   c.run = run;
   c.wall = run.summary.value("wall_time_s", 0.0);
-  c.summary = run.summary;
   c.t = run.history("time");
   const auto ul = run.history("probe_ext_left_ux"), ur = run.history("probe_ext_right_ux");
   const auto F = run.history("reaction_pulled_x");
@@ -398,8 +396,8 @@ TEST(FullDogbone, TimingTableOfTheThreeModes) {
   for (std::size_t m = 0; m < modes.size(); ++m) {
     const perf::Ratio ratio = perf::ratio_of_medians(wall[m], wall[0]);
     const Curve& c = last[m];
-    const Json& ps = c.summary["particle_steps"];
-    const Json& phases = c.summary["wall_time_phases"];
+    const Json& ps = c.run.summary["particle_steps"];
+    const Json& phases = c.run.summary["wall_time_phases"];
     const double pd_steps = ps.value("pd", 0.0), mpm_steps = ps.value("mpm", 0.0), total = phases.value("total", 1.0);
     // Largest |S − S_pd| / S_pd at equal times from the end of the start-up transient to pure
     // SBPD's maximum load: the accuracy the saving is bought at.
@@ -409,7 +407,7 @@ TEST(FullDogbone, TimingTableOfTheThreeModes) {
       const double s_pd = stress_at_time(last[0], c.t[k]);
       if (std::isfinite(s_pd)) against_pd = std::max(against_pd, std::abs(c.S[k] - s_pd) / s_pd);
     }
-    const int onsets = c.summary.value("events", Json::object()).value("onsets", 0);
+    const int onsets = c.run.summary.value("events", Json::object()).value("onsets", 0);
     // The caption (and docs/verification/dogbone.md) read the adaptive modes as the grid
     // alone: a PD region forming before 5.6 ms makes that wrong, and they must be rewritten.
     if (m > 0) {

@@ -272,7 +272,7 @@ TEST(FastHybrid, AYieldedBlockKeepsItsStateMpmToPdToMpm) {
                          .tolerance_reason =
                              "the two transfers are inverse at the particle's own bond geometry and the PD "
                              "evaluation between them does not flow (its σ̄ is the grid's, on the yield surface); "
-                             "what is left is round-off in ln U and the least-squares fit (≤ 3e-13 measured)",
+                             "what is left is round-off in ln U and the least-squares fit (≤ 2e-14 measured)",
                          .source = kSource,
                          .unit = "",
                          .problem = kProblem});
