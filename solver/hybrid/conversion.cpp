@@ -49,31 +49,32 @@ void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys
 }
 
 template <int D>
-void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i) {
-  const Mat<D> F = bond_deformation_gradient<D>(sys, i).value_or(mpm.state().F[i]);
-  mpm::PointHistory h = mpm.state().history[i];
+GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& model, const mpm::Simulation<D>& mpm,
+                                Index i, PlasticTransfer transfer) {
+  const std::optional<Mat<D>> F = bond_deformation_gradient<D>(sys, i);
+  const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model);
+  GridState<D> s{F.value_or(mpm.state().F[i]), mpm.state().history[i]};
+  if (transfer == PlasticTransfer::elastic_state && F && plastic)
+    if (const std::optional<Mat<3>> eps_e = elastic_strain_from_pd<D>(sys, *plastic, i)) {
+      s.history.plastic_strain.setZero();
+      s.history.plastic_strain.template topLeftCorner<D, D>() =
+          mpm::polar_log<D>(*F).log_U - eps_e->template topLeftCorner<D, D>();
+      if constexpr (D == 2) s.history.plastic_strain(2, 2) = -(s.history.plastic_strain(0, 0) + s.history.plastic_strain(1, 1));
+      s.history.eq_plastic_strain = plastic->committed_eq_plastic_strain(i);
+      return s;
+    }
+  // strain, or the bonds do not determine the elastic strain
   if constexpr (D >= 2)
-    if (const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model))
-      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) h = *fitted;
-  mpm.set_state(i, F, h);
+    if (plastic)
+      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) s.history = *fitted;
+  return s;
 }
 
 template <int D>
-void to_mpm_elastic_state(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i) {
-  const std::optional<Mat<D>> F = bond_deformation_gradient<D>(sys, i);
-  const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model);
-  std::optional<Mat<3>> eps_e;
-  if (F && plastic) eps_e = elastic_strain_from_pd<D>(sys, *plastic, i);
-  if (!eps_e) {  // the bonds do not determine it: as to_mpm
-    to_mpm<D>(sys, model, mpm, i);
-    return;
-  }
-  mpm::PointHistory h = mpm.state().history[i];
-  h.plastic_strain.setZero();
-  h.plastic_strain.topLeftCorner<D, D>() = mpm::polar_log<D>(*F).log_U - eps_e->topLeftCorner<D, D>();
-  if constexpr (D == 2) h.plastic_strain(2, 2) = -(h.plastic_strain(0, 0) + h.plastic_strain(1, 1));
-  h.eq_plastic_strain = plastic->committed_eq_plastic_strain(i);
-  mpm.set_state(i, *F, h);
+void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i,
+            PlasticTransfer transfer) {
+  const GridState<D> s = grid_state_from_pd<D>(sys, model, mpm, i, transfer);
+  mpm.set_state(i, s.F, s.history);
 }
 
 template std::optional<Mat<2>> bond_deformation_gradient<2>(const pd::System<2>&, Index);
@@ -84,9 +85,11 @@ template Mat<3> grid_elastic_strain<2>(const mpm::Simulation<2>&, Index);
 template Mat<3> grid_elastic_strain<3>(const mpm::Simulation<3>&, Index);
 template void to_pd_elastic_state<2>(const mpm::Simulation<2>&, const pd::System<2>&, pd::Model<2>&, Index);
 template void to_pd_elastic_state<3>(const mpm::Simulation<3>&, const pd::System<3>&, pd::Model<3>&, Index);
-template void to_mpm_elastic_state<2>(const pd::System<2>&, const pd::Model<2>&, mpm::Simulation<2>&, Index);
-template void to_mpm_elastic_state<3>(const pd::System<3>&, const pd::Model<3>&, mpm::Simulation<3>&, Index);
-template void to_mpm<2>(const pd::System<2>&, const pd::Model<2>&, mpm::Simulation<2>&, Index);
-template void to_mpm<3>(const pd::System<3>&, const pd::Model<3>&, mpm::Simulation<3>&, Index);
+template GridState<2> grid_state_from_pd<2>(const pd::System<2>&, const pd::Model<2>&, const mpm::Simulation<2>&,
+                                            Index, PlasticTransfer);
+template GridState<3> grid_state_from_pd<3>(const pd::System<3>&, const pd::Model<3>&, const mpm::Simulation<3>&,
+                                            Index, PlasticTransfer);
+template void to_mpm<2>(const pd::System<2>&, const pd::Model<2>&, mpm::Simulation<2>&, Index, PlasticTransfer);
+template void to_mpm<3>(const pd::System<3>&, const pd::Model<3>&, mpm::Simulation<3>&, Index, PlasticTransfer);
 
 }  // namespace pdmpm::hybrid

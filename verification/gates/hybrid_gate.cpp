@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <limits>
 #include <tuple>
 
@@ -202,10 +203,7 @@ RoundTrip mpm_pd_mpm(const Mat<2>& F, hybrid::PlasticTransfer transfer = hybrid:
   r.energy_ratio = body.pd->internal_energy() / stored;
   body.pd->accept();
   for (Index i = 0; i < p.n_real; ++i)
-    if (transfer == hybrid::PlasticTransfer::elastic_state)
-      hybrid::to_mpm_elastic_state<2>(body.pd_setup.system, body.pd->model(), *body.mpm, i);
-    else
-      hybrid::to_mpm<2>(body.pd_setup.system, body.pd->model(), *body.mpm, i);
+    hybrid::to_mpm<2>(body.pd_setup.system, body.pd->model(), *body.mpm, i, transfer);
   const auto Fpd = hybrid::bond_deformation_gradient<2>(body.pd_setup.system, probe);
   r.grad_error = Fpd ? (*Fpd - F).norm() : std::numeric_limits<double>::infinity();
   r.stress_change = (body.mpm->state().cauchy(probe) - stress0).norm() / stress0.norm();
@@ -690,7 +688,7 @@ TEST(FastHybrid, GhostForcesUnderAffineMotion) {
   for (const auto& [label, H] : {std::pair{"stretch", stretch}, std::pair{"shear", shear}}) {
     const GhostForces mpm_only = ghost_forces(H, false);
     EXPECT_LT(mpm_only.mpm, 1e-12) << "the all-MPM body is in equilibrium under an affine motion";
-    for (const auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::full_state}) {
+    for (const auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::full_state, hybrid::Coupling::embedded}) {
       const GhostForces g = ghost_forces(H, true, coupling);
       rows.push_back({label, std::string(name(coupling)), g.pd, g.transition, g.mpm, mpm_only.mpm});
       if (coupling == hybrid::Coupling::full_state) full_state_pd = std::max(full_state_pd, g.pd);
@@ -723,6 +721,85 @@ TEST(FastHybrid, GhostForcesUnderAffineMotion) {
                       "whole family, so the PD particles are in equilibrium to round-off (gated); the grid's "
                       "hole remains, and with it half the transition particles' residual and a fifth of the "
                       "MPM particles'."}});
+}
+
+// A free plate with a PD disc in the middle, set vibrating by a smooth velocity field in
+// the elastic range: the total energy (kinetic + strain, both methods) against time.
+struct FreeVibration {
+  std::vector<double> t, energy;  // µs, J
+  double momentum_drift = 0.0;    // largest |P − P₀| / Σ m|v₀|
+};
+
+FreeVibration free_vibration(hybrid::Coupling coupling, int steps, int every, double radius = 5e-3) {
+  hybrid::Settings s;
+  s.mode = hybrid::Mode::expand;
+  s.coupling = coupling;
+  test::HybridPlate plate;
+  plate.size = {0.03, 0.02};
+
+  test::HybridBody body(s, plate);
+  auto& p = body.particles();
+  const Vec<2> centre(0.015, 0.01);
+  std::vector<Index> disc;
+  double scale = 0.0;
+  for (Index i = 0; i < p.n_real; ++i) {
+    const Vec<2> x = p.x0[i];
+    p.v[i] = Vec<2>(0.5 * std::sin(300 * x[1]), 0.4 * std::cos(250 * x[0]));  // ≈ 0.1 of the yield strain rate-wise
+    scale += kRho * p.volume[i] * p.v[i].norm();
+    if ((x - centre).norm() < radius) disc.push_back(i);
+  }
+  body.hybrid->start(disc);
+  FreeVibration r;
+  const Vec<2> p0 = body.hybrid->momentum();
+  for (int k = 0; k <= steps; ++k) {
+    if (k % every == 0) {
+      r.t.push_back(body.hybrid->time() * 1e6);
+      r.energy.push_back(body.hybrid->kinetic_energy() + body.hybrid->internal_energy());
+    }
+    if (k < steps) body.hybrid->step(kDt, (k + 1) % every == 0);
+    r.momentum_drift = std::max(r.momentum_drift, (body.hybrid->momentum() - p0).norm() / scale);
+  }
+  if (std::getenv("DIAG")) {
+    double ke[3] = {0, 0, 0};
+    Index worst = 0;
+    for (Index i = 0; i < p.n_real; ++i) {
+      const int k = p.kind[i] == ParticleKind::pd ? 0 : p.kind[i] == ParticleKind::transition ? 1 : 2;
+      ke[k] += 0.5 * kRho * p.volume[i] * p.v[i].squaredNorm();
+      if (p.v[i].norm() > p.v[worst].norm()) worst = i;
+    }
+    std::printf("KE pd %.3g tr %.3g mpm %.3g; worst v %.3g at (%g, %g) kind %d\n", ke[0], ke[1], ke[2], p.v[worst].norm(),
+                p.x0[worst][0] * 1e3, p.x0[worst][1] * 1e3, int(p.kind[worst]));
+    for (int y = 19; y >= 0; --y) {
+      for (int x = 0; x < 30; ++x) {
+        Index best = -1;
+        for (Index i = 0; i < p.n_real; ++i)
+          if (std::abs(p.x0[i][0] * 1e3 - x - 0.5) < 0.1 && std::abs(p.x0[i][1] * 1e3 - y - 0.5) < 0.1) best = i;
+        std::printf("%c", best < 0 ? ' ' : "0123456789"[std::min(9, int(p.v[best].norm() / (p.v[worst].norm() + 1e-30) * 10))]);
+      }
+      std::printf("   ");
+      for (int x = 0; x < 30; ++x) {
+        Index best = -1;
+        for (Index i = 0; i < p.n_real; ++i)
+          if (std::abs(p.x0[i][0] * 1e3 - x - 0.5) < 0.1 && std::abs(p.x0[i][1] * 1e3 - y - 0.5) < 0.1) best = i;
+        std::printf("%c", best < 0 ? ' ' : "PTM.R"[int(p.kind[best])]);
+      }
+      std::printf("\n");
+    }
+  }
+  return r;
+}
+
+TEST(FastHybrid, EmbeddedCouplingIsStable) {
+  for (const auto coupling : {hybrid::Coupling::embedded}) {
+    const FreeVibration r = free_vibration(coupling, 30000, 3000);
+    std::printf("%s:", std::string(name(coupling)).c_str());
+    for (std::size_t k = 0; k < r.t.size(); ++k) std::printf(" %.4g", r.energy[k] / r.energy[0]);
+    std::printf("  momentum drift %.3g\n", r.momentum_drift);
+  }
+  const FreeVibration r = free_vibration(hybrid::Coupling::paper, 4000, 400, 0.0);
+  std::printf("all MPM:");
+  for (std::size_t k = 0; k < r.t.size(); ++k) std::printf(" %.4g", r.energy[k] / r.energy[0]);
+  std::printf("\n");
 }
 
 // A plane P pulse (uniaxial strain: rollers on the long edges) running along a strip
