@@ -17,23 +17,15 @@ constexpr std::array<EnumName<Mode>, 3> names(Mode) {
   return {{{Mode::pd, "pd"}, {Mode::expand, "expand"}, {Mode::expand_shrink, "expand_shrink"}}};
 }
 
-// How PD and the grid meet (docs/models/hybrid.md, "Coupling"). Transition particles are
-// grid particles inside a PD particle's horizon, virtual PD particles.
-//   paper       their PD state (m, θ, the plastic return) comes from their bonds to PD
-//               particles alone, as a surface particle's would (Noorian et al. eq 10); the
-//               pair forces enter the grid as their external force, the reactions act on
-//               the PD particles: momentum exact, but an affine motion is not in equilibrium.
-//   full_state  their state comes from their whole family (the bonds to grid particles count
-//               in the state and exchange no force): the PD particles' forces under an affine
-//               motion are the interior ones; the grid still sees a hole where PD is.
-//   embedded    full_state's PD side, and the grid sees no hole: the PD particles that share
-//               a node with grid particles are scattered into it (mass, momentum, the stress
-//               MPM's law gives their bond deformation gradient) and the grid takes no PD
-//               pair force. An affine motion is in equilibrium everywhere; momentum passes
-//               through two discretisations of one traction and is not exact.
-enum class Coupling { paper, full_state, embedded };
-constexpr std::array<EnumName<Coupling>, 3> names(Coupling) {
-  return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}, {Coupling::embedded, "embedded"}}};
+// How the transition particles (grid particles inside a PD particle's horizon, virtual
+// PD particles) take part in PD. paper: their PD state (m, θ, the plastic return) comes
+// from their bonds to PD particles alone, as a surface particle's would (Noorian et al.
+// eq 10). full_state: from their whole family — the bonds to grid particles count in the
+// state and exchange no force — so under an affine motion their force states, and with
+// them the PD particles' forces, are the interior ones (docs/models/hybrid.md, ghost forces).
+enum class Coupling { paper, full_state };
+constexpr std::array<EnumName<Coupling>, 2> names(Coupling) {
+  return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}}};
 }
 
 // What an MPM particle turned PD carries of its plastic state (plastic_state_transfer.hpp).

@@ -3,7 +3,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cmath>
 
 #include "solver/core/error.hpp"
 #include "solver/hybrid/conversion.hpp"
@@ -39,14 +38,7 @@ Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const 
     throw RunError("hybrid: the PD body and the MPM simulation must share one particle store");
   if (pd.particles().n_ghost() > 0)
     throw RunError("hybrid: symmetry planes are not supported (PD regions are not mirrored)");
-  pd.system().transition_full_state = settings_.coupling != Coupling::paper;
-  if (settings_.coupling == Coupling::embedded) {
-    // Two particles can share a grid node when each axis distance is below twice the
-    // node support (≤ 1.5 h for every shape function, plus a GIMP half-width ≤ Δx/2);
-    // two spacings more for the motion since the reference configuration.
-    const double reach = 2.0 * (1.5 * mpm.cell_size() / pd.system().spacing() + 0.5);
-    grid_reach_ = static_cast<int>(std::ceil(reach)) + 2;
-  }
+  pd.system().transition_full_state = settings_.coupling == Coupling::full_state;
 }
 
 template <int D>
@@ -74,7 +66,6 @@ void Simulation<D>::start(std::span<const Index> initial_pd) {
   }
   pd_.refresh_kinds();
   mpm_.refresh_active();
-  find_embedded();
   pd_.boundaries().apply_displacement(p, 0.0, 0.0);
   p.update_ghosts();
   evaluate_forces(0.0, true);
@@ -95,14 +86,10 @@ void Simulation<D>::step(double dt, bool energy) {
     clock = now;
   };
 
-  embed_pd_in_grid();
-  lap(seconds_.coupling);
   pd_.kick(0.5 * dt);
   bcs.apply_velocity(p, t + 0.5 * dt);
   pd_.drift(dt);
   lap(seconds_.pd);
-  embed_next_velocities();
-  lap(seconds_.coupling);
   pd_particle_steps_ += static_cast<std::int64_t>(pd_.movers().size());
   mpm_particle_steps_ += static_cast<std::int64_t>(mpm_.active().size());
   mpm_.step(dt);
@@ -152,10 +139,9 @@ void Simulation<D>::evaluate_forces(double t, bool energy) {
   // pd::Simulation wrote body forces and tractions into b of every particle: the
   // grid applies its own to MPM particles, so they keep only the coupling force.
   coupled_.clear();
-  const bool into_grid = settings_.coupling != Coupling::embedded;  // embedded: the grid feels the PD stress instead
   for (Index i = 0; i < p.n_real; ++i) {
     if (p.kind[i] == ParticleKind::pd) continue;
-    if (into_grid && p.kind[i] == ParticleKind::transition) {
+    if (p.kind[i] == ParticleKind::transition) {
       p.b[i] = p.f[i];
       coupled_.push_back(i);
     } else {
@@ -253,68 +239,6 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
   if (settings_.plastic_transfer == PlasticTransfer::elastic_state)
     for (const Index i : into_pd) to_pd_elastic_state<D>(mpm_, sys, pd_.model(), i);
   mpm_.refresh_active();
-  find_embedded();
-}
-
-// Coupling embedded: the PD particles that may share a grid node with a grid particle.
-// Walking from each transition particle finds them all: the lattice path from a PD
-// particle to the nearest grid particle meets a transition particle first.
-template <int D>
-void Simulation<D>::find_embedded() {
-  embedded_.clear();
-  if (settings_.coupling != Coupling::embedded) return;
-  const auto& p = pd_.particles();
-  std::vector<std::uint8_t> mark(static_cast<std::size_t>(p.n_real), 0);
-  const int r = grid_reach_;
-  for (Index i = 0; i < p.n_real; ++i) {
-    if (p.kind[i] != ParticleKind::transition) continue;
-    IVec<D> off = IVec<D>::Constant(-r);
-    while (true) {  // every offset of the box [−r, r]^D
-      const Index j = map_.find(map_.site(i) + off);
-      if (j >= 0 && j < p.n_real && p.kind[j] == ParticleKind::pd) mark[j] = 1;
-      int a = 0;
-      while (a < D && off[a] == r) off[a++] = -r;
-      if (a == D) break;
-      ++off[a];
-    }
-  }
-  for (Index i = 0; i < p.n_real; ++i)
-    if (mark[i]) embedded_.push_back(i);
-}
-
-// Coupling embedded, at tⁿ: each embedded PD particle's position, velocity and the stress
-// MPM's law gives its bond deformation gradient and plastic state (grid_state_from_pd), for
-// this step's grid. A particle whose bonds no longer span the plane carries no stress.
-template <int D>
-void Simulation<D>::embed_pd_in_grid() {
-  if (settings_.coupling != Coupling::embedded) return;
-  const auto& p = pd_.particles();
-  const auto& sys = pd_.system();
-  const Index n = static_cast<Index>(embedded_.size());
-  embedded_points_.resize(embedded_.size());
-#pragma omp parallel for schedule(static) if (n >= 256)
-  for (Index k = 0; k < n; ++k) {
-    const Index i = embedded_[k];
-    mpm::EmbeddedPoint<D>& e = embedded_points_[k];
-    e.p = i;
-    e.x = p.position(i);
-    e.v = p.v[i];
-    e.volume_kirchhoff.setZero();
-    if (bond_deformation_gradient<D>(sys, i)) {
-      const GridState<D> g = grid_state_from_pd<D>(sys, pd_.model(), mpm_, i, settings_.plastic_transfer);
-      e.volume_kirchhoff = p.volume[i] * mpm_.kirchhoff_for(g.F, g.history).template topLeftCorner<D, D>();
-    }
-  }
-}
-
-// MUSL's remap needs the embedded particles' velocity at tⁿ⁺¹, which PD has not computed
-// yet: after the first half kick, vⁿ⁺¹ ≈ 2vⁿ⁺½ − vⁿ (exact for a constant force).
-template <int D>
-void Simulation<D>::embed_next_velocities() {
-  if (settings_.coupling != Coupling::embedded) return;
-  const auto& p = pd_.particles();
-  for (auto& e : embedded_points_) e.v_next = 2.0 * p.v[e.p] - e.v;
-  mpm_.set_embedded(embedded_points_);
 }
 
 // No healing: a PD particle with a broken bond stays PD, so both faces of a crack
@@ -413,7 +337,6 @@ void Simulation<D>::checkpoint(core::StateArchive& a) {
   a.sync("hybrid/next_tip_id", next_tip_id_);
   a.sync("hybrid/last_breaks", last_breaks_);
   a.sync("hybrid/coupled", coupled_);
-  a.sync("hybrid/embedded", embedded_);
   a.sync("hybrid/expansions_since_shrink", expansions_since_shrink_);
   a.sync("hybrid/dt", dt_);
   a.sync("hybrid/time", time_);

@@ -60,7 +60,7 @@ struct Events {
 struct PhaseSeconds {
   double pd = 0.0;        // PD bond forces, kicks and drifts
   double mpm = 0.0;       // the grid step (its own phases: mpm::Simulation::phase_seconds)
-  double coupling = 0.0;  // PD forces of transition particles into the grid (or the embedded PD particles)
+  double coupling = 0.0;  // PD forces of transition particles into the grid's external force
   double regions = 0.0;   // onset, expansion, tips, shrink, conversions, bond refresh
   double total() const { return pd + mpm + coupling + regions; }
 };
@@ -128,9 +128,6 @@ class Simulation {
   void evaluate_forces(double t, bool energy);
   std::vector<Index> bonds_broken_by_last_evaluation() const;
   std::vector<std::uint8_t> damaged_pd_particles() const;
-  void find_embedded();
-  void embed_pd_in_grid();
-  void embed_next_velocities();
 
   pd::Simulation<D>& pd_;
   mpm::Simulation<D>& mpm_;
@@ -141,11 +138,6 @@ class Simulation {
   int next_tip_id_ = 0;
   std::vector<Index> last_breaks_;  // particles with a bond broken by the last evaluation
   std::vector<Index> coupled_;      // transition particles carrying a coupling force in b
-  // Coupling embedded: the PD particles the grid feels, their state this step, and how far
-  // (lattice spacings per axis) two particles can be apart and share a grid node.
-  std::vector<Index> embedded_;
-  std::vector<mpm::EmbeddedPoint<D>> embedded_points_;
-  int grid_reach_ = 0;
   int expansions_since_shrink_ = 0;
   double dt_ = 0.0, time_ = 0.0, base_time_ = 0.0;
   std::int64_t base_steps_ = 0, steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;

@@ -314,24 +314,6 @@ void Simulation<D>::clear_grid(Scatter what) {
   }
 }
 
-// Serial over the few embedded points, after the particles: each node's sum keeps a
-// fixed order on any thread count.
-template <int D>
-void Simulation<D>::scatter_embedded(Scatter what, bool next_velocity) {
-  const IVec<D> stride = grid_.stride;
-  for (const EmbeddedPoint<D>& e : embedded_) {
-    const Stencil<D> st = make_stencil<D>(settings_.shape, e.x - grid_.node0, grid_.h, state_.half_width[e.p]);
-    if (!inside_grid(st)) continue;  // nothing of the body is there to feel it
-    const double m = state_.mass[e.p];
-    const Vec<D> mv = m * (next_velocity ? e.v_next : e.v);
-    for_each_grid_node<D>(st, K_, stride, [&](Index node, double w, const Vec<D>& g) {
-      if (what.mass) grid_.mass[node] += w * m;
-      if (what.momentum) grid_.momentum[node] += w * mv;
-      if (what.forces) grid_.force_internal[node] -= e.volume_kirchhoff * g;
-    });
-  }
-}
-
 template <int D>
 void Simulation<D>::fold_grid(Scatter what) {
   if (what.momentum) boundary_.fold(what.mass ? &grid_.mass : nullptr, &grid_.momentum);
@@ -367,7 +349,6 @@ void Simulation<D>::scatter(Scatter what) {
       const ScatterFields fields{what.mass, what.momentum, what.forces, external};
       schedule_.for_each_block(
           [&](Index k_begin, Index k_end) { scatter_rows(source, target, fields, k_begin, k_end); });
-      scatter_embedded(what, false);
       fold_grid(what);
       return;
     }
@@ -388,7 +369,6 @@ void Simulation<D>::scatter(Scatter what) {
       }
     });
   });
-  scatter_embedded(what, false);
   fold_grid(what);
 }
 
@@ -946,7 +926,6 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   if (remap) {
     clear_grid({.momentum = true});
     schedule_.for_each_block(move_run);
-    scatter_embedded({.momentum = true}, true);
     fold_grid({.momentum = true});
   } else {
     constexpr Index kChunk = 256;
@@ -973,11 +952,6 @@ void Simulation<D>::set_deformation_gradient(Index p, const Mat<D>& F) {
   state_.J[p] = r.J;
   state_.energy[p] = r.energy;
   state_.out_of_plane_strain[p] = r.out_of_plane_strain;
-}
-
-template <int D>
-Mat<3> Simulation<D>::kirchhoff_for(const Mat<D>& F, PointHistory history) const {
-  return constitutive_.update(F, history).kirchhoff;
 }
 
 template <int D>

@@ -56,14 +56,6 @@ struct StepPhaseSeconds {
   double total() const { return prepare + p2g + grid + g2p + stress; }
 };
 
-// A point the grid feels but the step does not move (Simulation::set_embedded).
-template <int D>
-struct EmbeddedPoint {
-  Index p = 0;              // its particle: mass and GIMP half-width are the MPM state's
-  Vec<D> x, v, v_next;      // position and velocity at tⁿ, velocity at tⁿ⁺¹ (MUSL's remap)
-  Mat<D> volume_kirchhoff;  // V₀ τ at tⁿ (the in-plane block in 2D)
-};
-
 template <int D>
 class Simulation {
  public:
@@ -123,16 +115,6 @@ class Simulation {
   // Set a particle's plastic history, then its deformation gradient (a particle the
   // hybrid hands back from PD; solver/hybrid/conversion.hpp).
   void set_state(Index p, const Mat<D>& F, const PointHistory& history);
-  // Kirchhoff stress (3×3) the constitutive law gives a point with deformation gradient F
-  // and plastic history `history` (a copy: nothing is changed).
-  Mat<3> kirchhoff_for(const Mat<D>& F, PointHistory history) const;
-  // Points the step does not move but the grid must feel, so that it sees no hole where
-  // they are (the hybrid's PD particles next to grid particles, hybrid.coupling =
-  // "embedded"): each is scattered like a material point at x — mass, momentum m v and
-  // internal force −V₀τ ∇S — and MUSL's remap takes its momentum m v_next. They stay
-  // until replaced; an empty list removes them.
-  void set_embedded(std::vector<EmbeddedPoint<D>> points) { embedded_ = std::move(points); }
-  const std::vector<EmbeddedPoint<D>>& embedded() const { return embedded_; }
   // Call after particles were added or changed kind outside the simulation:
   // sizes the MPM state and initialises new slots.
   void sync_particles();
@@ -157,7 +139,6 @@ class Simulation {
   void scatter(Scatter what);
   void clear_grid(Scatter what);  // zero what a scatter sums
   void fold_grid(Scatter what);   // fold it across symmetry planes afterwards
-  void scatter_embedded(Scatter what, bool next_velocity);  // the embedded points' share
   void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_stress_in_lanes(const std::vector<Vec<D>>& grid_velocity, double dt, const PlaneStressLaw& law,
@@ -208,7 +189,6 @@ class Simulation {
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;
-  std::vector<EmbeddedPoint<D>> embedded_;
   std::vector<Vec<D>> damping_, velocity_free_;  // per node this step: damping force, v before constraints
   StepPhaseSeconds phase_seconds_;
   std::vector<std::uint8_t> failed_this_step_;

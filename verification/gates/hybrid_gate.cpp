@@ -8,7 +8,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <tuple>
 
@@ -688,7 +687,7 @@ TEST(FastHybrid, GhostForcesUnderAffineMotion) {
   for (const auto& [label, H] : {std::pair{"stretch", stretch}, std::pair{"shear", shear}}) {
     const GhostForces mpm_only = ghost_forces(H, false);
     EXPECT_LT(mpm_only.mpm, 1e-12) << "the all-MPM body is in equilibrium under an affine motion";
-    for (const auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::full_state, hybrid::Coupling::embedded}) {
+    for (const auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::full_state}) {
       const GhostForces g = ghost_forces(H, true, coupling);
       rows.push_back({label, std::string(name(coupling)), g.pd, g.transition, g.mpm, mpm_only.mpm});
       if (coupling == hybrid::Coupling::full_state) full_state_pd = std::max(full_state_pd, g.pd);
@@ -723,83 +722,86 @@ TEST(FastHybrid, GhostForcesUnderAffineMotion) {
                       "MPM particles'."}});
 }
 
-// A free plate with a PD disc in the middle, set vibrating by a smooth velocity field in
-// the elastic range: the total energy (kinetic + strain, both methods) against time.
+// A free plate with a PD disc in the middle (none: the all-MPM plate), set vibrating by
+// a smooth velocity field in the elastic range: its total energy (kinetic + strain, both
+// methods) against time. Nothing dissipates in the model, so every change is the
+// discretisation's.
 struct FreeVibration {
-  std::vector<double> t, energy;  // µs, J
-  double momentum_drift = 0.0;    // largest |P − P₀| / Σ m|v₀|
+  std::vector<double> t, energy;  // µs, E / E(0)
 };
 
-FreeVibration free_vibration(hybrid::Coupling coupling, int steps, int every, double radius = 5e-3) {
+FreeVibration free_vibration(hybrid::Coupling coupling, double disc_radius) {
+  constexpr int kSteps = 10000, kEvery = 500;  // 200 µs: ≈ 8 periods of the plate's lowest modes
   hybrid::Settings s;
   s.mode = hybrid::Mode::expand;
   s.coupling = coupling;
   test::HybridPlate plate;
   plate.size = {0.03, 0.02};
-
   test::HybridBody body(s, plate);
   auto& p = body.particles();
   const Vec<2> centre(0.015, 0.01);
   std::vector<Index> disc;
-  double scale = 0.0;
   for (Index i = 0; i < p.n_real; ++i) {
     const Vec<2> x = p.x0[i];
-    p.v[i] = Vec<2>(0.5 * std::sin(300 * x[1]), 0.4 * std::cos(250 * x[0]));  // ≈ 0.1 of the yield strain rate-wise
-    scale += kRho * p.volume[i] * p.v[i].norm();
-    if ((x - centre).norm() < radius) disc.push_back(i);
+    p.v[i] = Vec<2>(0.5 * std::sin(300 * x[1]), 0.4 * std::cos(250 * x[0]));  // peak strain ≈ 1e-4, elastic
+    if ((x - centre).norm() < disc_radius) disc.push_back(i);
   }
   body.hybrid->start(disc);
   FreeVibration r;
-  const Vec<2> p0 = body.hybrid->momentum();
-  for (int k = 0; k <= steps; ++k) {
-    if (k % every == 0) {
+  double e0 = 0.0;
+  for (int k = 0; k <= kSteps; ++k) {
+    if (k % kEvery == 0) {
+      const double e = body.hybrid->kinetic_energy() + body.hybrid->internal_energy();
+      if (k == 0) e0 = e;
       r.t.push_back(body.hybrid->time() * 1e6);
-      r.energy.push_back(body.hybrid->kinetic_energy() + body.hybrid->internal_energy());
+      r.energy.push_back(e / e0);
     }
-    if (k < steps) body.hybrid->step(kDt, (k + 1) % every == 0);
-    r.momentum_drift = std::max(r.momentum_drift, (body.hybrid->momentum() - p0).norm() / scale);
-  }
-  if (std::getenv("DIAG")) {
-    double ke[3] = {0, 0, 0};
-    Index worst = 0;
-    for (Index i = 0; i < p.n_real; ++i) {
-      const int k = p.kind[i] == ParticleKind::pd ? 0 : p.kind[i] == ParticleKind::transition ? 1 : 2;
-      ke[k] += 0.5 * kRho * p.volume[i] * p.v[i].squaredNorm();
-      if (p.v[i].norm() > p.v[worst].norm()) worst = i;
-    }
-    std::printf("KE pd %.3g tr %.3g mpm %.3g; worst v %.3g at (%g, %g) kind %d\n", ke[0], ke[1], ke[2], p.v[worst].norm(),
-                p.x0[worst][0] * 1e3, p.x0[worst][1] * 1e3, int(p.kind[worst]));
-    for (int y = 19; y >= 0; --y) {
-      for (int x = 0; x < 30; ++x) {
-        Index best = -1;
-        for (Index i = 0; i < p.n_real; ++i)
-          if (std::abs(p.x0[i][0] * 1e3 - x - 0.5) < 0.1 && std::abs(p.x0[i][1] * 1e3 - y - 0.5) < 0.1) best = i;
-        std::printf("%c", best < 0 ? ' ' : "0123456789"[std::min(9, int(p.v[best].norm() / (p.v[worst].norm() + 1e-30) * 10))]);
-      }
-      std::printf("   ");
-      for (int x = 0; x < 30; ++x) {
-        Index best = -1;
-        for (Index i = 0; i < p.n_real; ++i)
-          if (std::abs(p.x0[i][0] * 1e3 - x - 0.5) < 0.1 && std::abs(p.x0[i][1] * 1e3 - y - 0.5) < 0.1) best = i;
-        std::printf("%c", best < 0 ? ' ' : "PTM.R"[int(p.kind[best])]);
-      }
-      std::printf("\n");
-    }
+    if (k < kSteps) body.hybrid->step(kDt, (k + 1) % kEvery == 0);
   }
   return r;
 }
 
-TEST(FastHybrid, EmbeddedCouplingIsStable) {
-  for (const auto coupling : {hybrid::Coupling::embedded}) {
-    const FreeVibration r = free_vibration(coupling, 30000, 3000);
-    std::printf("%s:", std::string(name(coupling)).c_str());
-    for (std::size_t k = 0; k < r.t.size(); ++k) std::printf(" %.4g", r.energy[k] / r.energy[0]);
-    std::printf("  momentum drift %.3g\n", r.momentum_drift);
+TEST(FastHybrid, AFreelyVibratingPlateGainsNoEnergy) {
+  nlohmann::json series = nlohmann::json::array();
+  const FreeVibration mpm_only = free_vibration(hybrid::Coupling::paper, 0.0);
+  series.push_back({{"label", "all MPM"}, {"x", mpm_only.t}, {"y", mpm_only.energy}, {"style", "line"}});
+  double gain = 0.0;
+  for (const auto coupling : {hybrid::Coupling::paper, hybrid::Coupling::full_state}) {
+    const FreeVibration r = free_vibration(coupling, 5e-3);
+    series.push_back({{"label", std::string("PD disc, ") + std::string(name(coupling))},
+                      {"x", r.t},
+                      {"y", r.energy},
+                      {"style", "line"}});
+    gain = std::max(gain, *std::max_element(r.energy.begin(), r.energy.end()) - 1.0);
   }
-  const FreeVibration r = free_vibration(hybrid::Coupling::paper, 4000, 400, 0.0);
-  std::printf("all MPM:");
-  for (std::size_t k = 0; k < r.t.size(); ++k) std::printf(" %.4g", r.energy[k] / r.energy[0]);
-  std::printf("\n");
+  test::record_gate(Gate{.id = "hybrid.stability.free_vibration",
+                         .claim = "a free plate with a PD disc (paper and full-state couplings), set vibrating in the "
+                                  "elastic range, shall gain no energy over 10 000 steps (200 µs): largest "
+                                  "(E − E₀)/E₀ ≤ 0.01",
+                         .measured = gain,
+                         .expected = 0.01,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the all-MPM plate's own energy error over the run is 0.2 % (measured, "
+                                             "plot 09); 1 % is five times that, far below the ×60 growth of an "
+                                             "unstable coupling (docs/models/hybrid.md)",
+                         .source = kSource,
+                         .unit = "",
+                         .problem = kProblem});
+  test::record_data(kProblem, "09_free_vibration",
+                    {{"kind", "plot"},
+                     {"title", "A freely vibrating plate: total energy against time"},
+                     {"xlabel", "t (µs)"},
+                     {"ylabel", "E / E(0)"},
+                     {"xscale", "linear"},
+                     {"yscale", "linear"},
+                     {"series", series},
+                     {"caption",
+                      "30 × 20 mm plate, Δx = 1 mm, Δt = 20 ns, free edges, a smooth initial velocity field "
+                      "(peak strain ≈ 1e-4, no yield); E = kinetic + strain energy of both methods. The "
+                      "all-MPM plate keeps its energy within 0.2 %; a PD disc of radius 5 mm (the transition "
+                      "ring around it) takes energy out: the interface dissipates, it does not pump (gated: "
+                      "no gain above 1 %). A coupling whose grid feels the PD particles' stress (no ghost "
+                      "forces) grew ×62 in 30 000 steps here (docs/models/hybrid.md)."}});
 }
 
 // A plane P pulse (uniaxial strain: rollers on the long edges) running along a strip
