@@ -324,6 +324,16 @@ double Simulation<D>::kinetic_energy() const {
 }
 
 template <int D>
+double Simulation<D>::transition_pd_energy() const {
+  const auto& p = pd_.particles();
+  if (pd_.movers().empty()) return 0.0;  // no evaluation has run
+  double u = 0.0;
+  for (Index i = 0; i < p.n_real; ++i)
+    if (p.kind[i] == ParticleKind::transition) u += pd_.energy_density(i) * p.volume[i];
+  return u;
+}
+
+template <int D>
 double Simulation<D>::internal_energy() const {
   return pd_.internal_energy() + mpm_.energies().strain;
 }

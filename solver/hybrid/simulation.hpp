@@ -115,6 +115,11 @@ class Simulation {
   Vec<D> momentum() const;
   double kinetic_energy() const;   // PD movers + MPM particles
   double internal_energy() const;  // PD strain energy of the movers (last evaluation with energy) + MPM stored energy
+  // PD strain energy of the transition particles (last evaluation with energy). The pair
+  // forces derive from the PD energy of PD and transition particles together (paper
+  // coupling), so kinetic + internal + this is the energy the coupled step would conserve;
+  // the body's strain energy counts the transition particles once, in internal_energy().
+  double transition_pd_energy() const;
   // Energy added by conversions since the start (J; with settings.audit_conversions,
   // else 0): at each converting step the strain energy of the body at tⁿ⁺¹ after the
   // conversions minus before them (kinetic energy does not change: v is carried).

@@ -96,6 +96,9 @@ class Simulation {
 
   double kinetic_energy() const;
   double internal_energy() const;  // from the last internal_forces(true)
+  // Strain energy density of owner i (a mover or, in a hybrid, a transition particle)
+  // from the last internal_forces(true).
+  double energy_density(Index i) const { return energy_[i]; }
   Vec<D> momentum() const;
   Eigen::Vector3d angular_momentum() const;
 
