@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <iostream>
+#include <thread>
 
 #include "solver/app/commands.hpp"
 #include "solver/core/error.hpp"
@@ -17,6 +18,7 @@
 #include "solver/io/scene.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run.hpp"
+#include "solver/sim/run_metrics.hpp"
 
 namespace pdmpm::app {
 namespace {
@@ -74,6 +76,7 @@ int check_command(const CheckArgs& args) {
     const bool calibrate = !quasi_static && args.calibration_seconds > 0.0;
     // First trial: built, and a few steps when calibrating (their wall time sizes the second).
     const std::int64_t n1 = calibrate ? std::min<std::int64_t>(10, scene.time.steps.value_or(10)) : 0;
+    const double others = sim::other_running_processes();  // before the calibration runs
     const Trial first = trial_run(scene, n1, args.threads, scratch.path / "first");
     const nlohmann::json& s = first.summary;
     describe(scene, s);
@@ -105,6 +108,12 @@ int check_command(const CheckArgs& args) {
     fmt::print("  estimate    about {} for the run, without field output{}\n",
                io::format_duration(fixed + per_step * static_cast<double>(plan.steps)),
                scene.method == io::Method::hybrid ? " (PD regions born later make it longer)" : "");
+    const int cores = static_cast<int>(std::thread::hardware_concurrency());
+    if (sim::cores_taken(others, cores, threads))
+      fmt::print(
+          "  note        the machine was busy ({:.0f} other process{} running on {} cores): a run timed while\n"
+          "              other work holds the cores it needs can take many times as long as on a quiet machine\n",
+          others, others == 1.0 ? "" : "es", cores);
     return 0;
   } catch (const InputError& e) {
     std::cerr << "pdmpm: error: " << e.what() << "\n";

@@ -48,6 +48,14 @@ void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys
                                      mpm.state().history[i].eq_plastic_strain);
 }
 
+namespace {
+
+template <int D>
+struct GridState {
+  Mat<D> F;
+  mpm::PointHistory history;
+};
+
 template <int D>
 GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& model, const mpm::Simulation<D>& mpm,
                                 Index i, PlasticTransfer transfer) {
@@ -59,7 +67,8 @@ GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& mo
       s.history.plastic_strain.setZero();
       s.history.plastic_strain.template topLeftCorner<D, D>() =
           mpm::polar_log<D>(*F).log_U - eps_e->template topLeftCorner<D, D>();
-      if constexpr (D == 2) s.history.plastic_strain(2, 2) = -(s.history.plastic_strain(0, 0) + s.history.plastic_strain(1, 1));
+      if constexpr (D == 2)
+        s.history.plastic_strain(2, 2) = -(s.history.plastic_strain(0, 0) + s.history.plastic_strain(1, 1));
       s.history.eq_plastic_strain = plastic->committed_eq_plastic_strain(i);
       return s;
     }
@@ -69,6 +78,8 @@ GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& mo
       if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) s.history = *fitted;
   return s;
 }
+
+}  // namespace
 
 template <int D>
 void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i,
@@ -85,10 +96,6 @@ template Mat<3> grid_elastic_strain<2>(const mpm::Simulation<2>&, Index);
 template Mat<3> grid_elastic_strain<3>(const mpm::Simulation<3>&, Index);
 template void to_pd_elastic_state<2>(const mpm::Simulation<2>&, const pd::System<2>&, pd::Model<2>&, Index);
 template void to_pd_elastic_state<3>(const mpm::Simulation<3>&, const pd::System<3>&, pd::Model<3>&, Index);
-template GridState<2> grid_state_from_pd<2>(const pd::System<2>&, const pd::Model<2>&, const mpm::Simulation<2>&,
-                                            Index, PlasticTransfer);
-template GridState<3> grid_state_from_pd<3>(const pd::System<3>&, const pd::Model<3>&, const mpm::Simulation<3>&,
-                                            Index, PlasticTransfer);
 template void to_mpm<2>(const pd::System<2>&, const pd::Model<2>&, mpm::Simulation<2>&, Index, PlasticTransfer);
 template void to_mpm<3>(const pd::System<3>&, const pd::Model<3>&, mpm::Simulation<3>&, Index, PlasticTransfer);
 

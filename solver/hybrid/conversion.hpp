@@ -39,22 +39,12 @@ Mat<3> grid_elastic_strain(const mpm::Simulation<D>& mpm, Index i);
 template <int D>
 void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>& model, Index i);
 
-// What the grid's law needs of PD particle i: F from its live bonds (what MPM last had
-// when they do not span the plane) and its plastic history in the grid's terms —
-// strain: fitted from the bond plastic extensions; elastic_state: ε_p = ln U(F) − ε_e
-// with ε_e the PD state's elastic strain (plastic_state_transfer.hpp; in plane,
-// ε_p,zz from tr ε_p = 0), so the law returns the PD state's stress. Where the bonds do
-// not determine the plastic state, the history MPM last had.
-template <int D>
-struct GridState {
-  Mat<D> F;
-  mpm::PointHistory history;
-};
-template <int D>
-GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& model, const mpm::Simulation<D>& mpm,
-                                Index i, PlasticTransfer transfer);
-
-// PD → MPM: the particle takes grid_state_from_pd as its state.
+// PD → MPM: F from the live bonds (what MPM last had when they do not span the plane) and
+// the plastic history in the grid's terms — strain: fitted from the bond plastic
+// extensions; elastic_state: ε_p = ln U(F) − ε_e with ε_e the PD state's elastic strain
+// (plastic_state_transfer.hpp; in plane, ε_p,zz from tr ε_p = 0), so the grid's law
+// returns the PD state's stress. Where the bonds do not determine the plastic state, the
+// history MPM last had.
 template <int D>
 void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i,
             PlasticTransfer transfer = PlasticTransfer::strain);
