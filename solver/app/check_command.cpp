@@ -76,7 +76,7 @@ int check_command(const CheckArgs& args) {
     const bool calibrate = !quasi_static && args.calibration_seconds > 0.0;
     // First trial: built, and a few steps when calibrating (their wall time sizes the second).
     const std::int64_t n1 = calibrate ? std::min<std::int64_t>(10, scene.time.steps.value_or(10)) : 0;
-    const double others = sim::other_running_processes();  // before the calibration runs
+    const double others = calibrate ? sim::other_running_processes() : -1.0;  // before the calibration runs
     const Trial first = trial_run(scene, n1, args.threads, scratch.path / "first");
     const nlohmann::json& s = first.summary;
     describe(scene, s);

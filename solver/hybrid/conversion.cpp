@@ -48,44 +48,26 @@ void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys
                                      mpm.state().history[i].eq_plastic_strain);
 }
 
-namespace {
-
 template <int D>
-struct GridState {
-  Mat<D> F;
-  mpm::PointHistory history;
-};
-
-template <int D>
-GridState<D> grid_state_from_pd(const pd::System<D>& sys, const pd::Model<D>& model, const mpm::Simulation<D>& mpm,
-                                Index i, PlasticTransfer transfer) {
+void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i,
+            PlasticTransfer transfer) {
   const std::optional<Mat<D>> F = bond_deformation_gradient<D>(sys, i);
   const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model);
-  GridState<D> s{F.value_or(mpm.state().F[i]), mpm.state().history[i]};
+  mpm::PointHistory h = mpm.state().history[i];
   if (transfer == PlasticTransfer::elastic_state && F && plastic)
     if (const std::optional<Mat<3>> eps_e = elastic_strain_from_pd<D>(sys, *plastic, i)) {
-      s.history.plastic_strain.setZero();
-      s.history.plastic_strain.template topLeftCorner<D, D>() =
-          mpm::polar_log<D>(*F).log_U - eps_e->template topLeftCorner<D, D>();
-      if constexpr (D == 2)
-        s.history.plastic_strain(2, 2) = -(s.history.plastic_strain(0, 0) + s.history.plastic_strain(1, 1));
-      s.history.eq_plastic_strain = plastic->committed_eq_plastic_strain(i);
-      return s;
+      h.plastic_strain.setZero();
+      h.plastic_strain.topLeftCorner<D, D>() = mpm::polar_log<D>(*F).log_U - eps_e->topLeftCorner<D, D>();
+      if constexpr (D == 2) h.plastic_strain(2, 2) = -(h.plastic_strain(0, 0) + h.plastic_strain(1, 1));
+      h.eq_plastic_strain = plastic->committed_eq_plastic_strain(i);
+      mpm.set_state(i, *F, h);
+      return;
     }
   // strain, or the bonds do not determine the elastic strain
   if constexpr (D >= 2)
     if (plastic)
-      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) s.history = *fitted;
-  return s;
-}
-
-}  // namespace
-
-template <int D>
-void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation<D>& mpm, Index i,
-            PlasticTransfer transfer) {
-  const GridState<D> s = grid_state_from_pd<D>(sys, model, mpm, i, transfer);
-  mpm.set_state(i, s.F, s.history);
+      if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) h = *fitted;
+  mpm.set_state(i, F.value_or(mpm.state().F[i]), h);
 }
 
 template std::optional<Mat<2>> bond_deformation_gradient<2>(const pd::System<2>&, Index);
