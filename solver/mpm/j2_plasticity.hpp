@@ -30,6 +30,23 @@ struct J2Constants {
   double c1;                    // E/(3(1 − ν)), plane-stress spectral mode 1
 };
 
+// Where the plane-stress return's Newton iteration starts (j2_return_plane_stress,
+// plane_stress_lanes.cpp): the root of its consistency condition with both spectral modes
+// scaled by their mean modulus c̄ = (c₁s₁ + c₂s₂)/(s₁ + s₂), in closed form for linear
+// hardening, with S = s₁ + s₂ = φ₀², κ₀ = σ_y + H α₀:
+//   Δγ₀ = S (φ₀/√2 − κ₀/√3) / (κ₀ (c₁s₁ + c₂s₂)/√3 + (√2/3) H φ₀ S).
+// Not positive or not finite: 0. T is double or a lane vector (sqrt_of its square root),
+// the same operations on both, so both give the same bits.
+template <class T, class Sqrt>
+inline T plane_stress_newton_start(T s1, T s2, double c1, double c2, T kappa0, double H, Sqrt sqrt_of) {
+  const double inv_sqrt2 = 0.70710678118654752440, inv_sqrt3 = 0.57735026918962576451;
+  const double sqrt2_over3 = 0.47140452079103168293;
+  const T S = s1 + s2, phi0 = sqrt_of(S);
+  const T num = S * (inv_sqrt2 * phi0 - inv_sqrt3 * kappa0);
+  const T den = inv_sqrt3 * (kappa0 * (c1 * s1 + c2 * s2)) + sqrt2_over3 * H * (phi0 * S);
+  return num / den;
+}
+
 // solid3d, plane_strain, uniaxial_strain: radial return (Simo & Hughes 1998, box 3.1).
 J2Result j2_return_3d(const J2Constants& k, const Mat<3>& eps, PointHistory& h, double hardening_offset);
 inline J2Result j2_return_3d(const core::Elastic& m, const core::J2Hardening& j2, const Mat<3>& eps, PointHistory& h,

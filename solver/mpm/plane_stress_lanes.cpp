@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/lanes.hpp"
 
 namespace pdmpm::mpm {
@@ -39,8 +40,13 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
     df = 0.5 * dp2 - (2.0 / 3.0) * kappa * dkappa;
     return 0.5 * p2 - kappa * kappa / 3.0;
   };
-  d dg = d{} + 0.0, df, lo = d{} + 0.0, hi = d{} + inf;
+  // j2_return_plane_stress's start and first bracket.
+  const d start =
+      plane_stress_newton_start(s1, s2, c1, c2, law.yield_stress + H * alpha0, H, [](d x) { return V::sqrt(x); });
+  const d dg0 = V::select((start > 0.0) & ((start - start) == 0.0), start, d{} + 0.0);
+  d df, dg = dg0;
   d fv = f(dg, df);
+  d lo = V::select(fv > 0.0, dg0, d{} + 0.0), hi = V::select(fv > 0.0, d{} + inf, dg0);
   m active = run;
   for (int it = 0; it < 200; ++it) {
     const d abs_f = V::select(fv < 0.0, -fv, fv);
