@@ -7,6 +7,7 @@
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/kinematics.hpp"
 #include "solver/mpm/neo_hookean.hpp"
+#include "solver/mpm/series_log_exp.hpp"
 
 namespace pdmpm::mpm {
 
@@ -78,7 +79,7 @@ StressResult Constitutive<D>::update(const PolarLog<D>& pl, PointHistory& histor
   double trace = eps.trace();
   if (setting_ == core::Setting::plane_stress) trace += out_of_plane;
   if (setting_ == core::Setting::bar1d) trace += 2.0 * out_of_plane;
-  r.J = std::exp(trace);
+  r.J = series_exp(trace);
   r.out_of_plane_strain = out_of_plane;
   if constexpr (D == 2) {
     // τ = R T Rᵀ with R = diag(R₂, 1): the in-plane block rotates, T₃₃ stays (the

@@ -5,6 +5,7 @@
 
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/lanes.hpp"
+#include "solver/mpm/series_log_exp.hpp"
 
 namespace pdmpm::mpm {
 
@@ -57,9 +58,7 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
     const m unbracketed = active & outside & (hi == inf);
     scalar |= unbracketed;
     active &= ~unbracketed;
-    bool any = false;
-    for (int i = 0; i < W; ++i) any = any || active[i] != 0;
-    if (!any) break;
+    if (V::bits(active) == 0) break;
     next = V::select(outside, 0.5 * (lo + hi), next);
     dg = V::select(active, next, dg);
     d df_new;
@@ -102,9 +101,7 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
       const d q00 = t00 * e00, q11 = t11 * e11, q01 = t01 * e01;
       energy = 0.5 * ((q00 + q11) + (q01 + q01));
     }
-    bool any_yielding = false;
-    for (int i = 0; i < W; ++i) any_yielding = any_yielding || yielding[i] != 0;
-    if (any_yielding) {
+    if (V::bits(yielding) != 0) {
       const d dg = consistency_parameter<W>(law, yielding, s1, s2, alpha, scalar);
       const m ret = yielding & ~scalar;
       // The returned stress and the plastic flow Δε_p = Δγ P σ.
@@ -123,29 +120,33 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
       out_of_plane = V::select(ret, oop_per_trace * (r00 + r11) + n22, out_of_plane);
       V::store(in.d00 + c0, d00), V::store(in.d11 + c0, d11), V::store(in.d01 + c0, d01);
       V::store(in.d22 + c0, d22), V::store(in.d_alpha + c0, d_alpha), V::store(in.dissipation + c0, dissipation);
-      for (int i = 0; i < W; ++i)
-        if (ret[i]) in.yielded |= 1u << (c0 + i);
+      in.yielded |= V::bits(ret) << c0;
     }
     // τ = R T Rᵀ on the in-plane block.
     const d c = V::load(in.c + c0), s = V::load(in.s + c0), ms = -s;
     const d rt00 = c * T00 + ms * T01, rt01 = c * T01 + ms * T11;
     const d rt10 = s * T00 + c * T01, rt11 = s * T01 + c * T11;
-    // J = exp(tr ε + ε₃₃), one library call per lane the law leaves here (as the law makes it).
+    // J = exp(tr ε + ε₃₃) as the law makes it (series_exp).
     const d trace = (l00 + l11) + out_of_plane;
-    double J[W];
-    for (int i = 0; i < W; ++i) {
-      if (!scalar[i]) {
-        J[i] = std::exp(trace[i]);
-      } else {
-        J[i] = 1.0;
-        by_law |= 1u << (c0 + i);
-      }
+    const d by_series = exp_series(trace);
+    const m small = V::select(trace < 0.0, -trace, trace) < kSeriesLimit;
+    // Lanes beyond the series' range call the library; the law takes the flagged ones.
+    d J = V::select(small, by_series, d{} + 1.0);
+    const unsigned flagged = V::bits(scalar), by_library = V::bits(~small) & ~flagged;
+    if (by_library != 0) {
+      double J_lanes[W];
+      V::store(J_lanes, J);
+      for (int i = 0; i < W; ++i)
+        if (by_library >> i & 1u) J_lanes[i] = std::exp(trace[i]);
+      J = V::load(J_lanes);
     }
+    J = V::select(scalar, d{} + 1.0, J);
+    by_law |= flagged << c0;
     V::store(in.k00 + c0, rt00 * c + rt01 * ms);
     V::store(in.k01 + c0, rt00 * s + rt01 * c);
     V::store(in.k10 + c0, rt10 * c + rt11 * ms);
     V::store(in.k11 + c0, rt10 * s + rt11 * c);
-    V::store(in.J + c0, V::load(J));
+    V::store(in.J + c0, J);
     V::store(in.out_of_plane + c0, out_of_plane);
     V::store(in.energy + c0, energy);
   }

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "solver/mpm/lanes.hpp"
+#include "solver/mpm/series_log_exp.hpp"
 
 namespace pdmpm::mpm {
 
@@ -29,20 +30,21 @@ __attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in
     const d mean = 0.5 * (U00 + U11), hd = 0.5 * (U00 - U11), off = 0.5 * (U01 + U10);
     const d r = V::sqrt(hd * hd + off * off);
     const d x = r / mean, y = x * x;
-    const d series =
-        1.0 + y * (1.0 / 3 + y * (1.0 / 5 + y * (1.0 / 7 + y * (1.0 / 9 + y * (1.0 / 11 + y * (1.0 / 13 + y / 15))))));
-    const d q = series / mean;
-    const m fine = (det > 0.0) & (x < 0.1);
-    double half_log_det[W];
-    for (int i = 0; i < W; ++i) {
-      if (fine[i]) {
-        half_log_det[i] = 0.5 * std::log(det[i]);
-      } else {
-        half_log_det[i] = 0.0;
-        scalar |= 1u << (c0 + i);
-      }
+    const d q = atanh_over_x_series(y) / mean;
+    const m fine = (det > 0.0) & (x < kSeriesLimit);
+    // ½ ln det U by series_half_log: the series where it holds, else the library.
+    const d z = half_log_argument(det), by_series = half_log_series(z);
+    const m near_one = V::select(z < 0.0, -z, z) < kSeriesLimit;
+    const unsigned flagged = V::bits(~fine), by_library = V::bits(~near_one) & ~flagged;
+    scalar |= flagged << c0;
+    d hl = V::select(fine, by_series, d{} + 0.0);
+    if (by_library != 0) {
+      double lanes[W];
+      V::store(lanes, hl);
+      for (int i = 0; i < W; ++i)
+        if (by_library >> i & 1u) lanes[i] = 0.5 * std::log(det[i]);
+      hl = V::load(lanes);
     }
-    const d hl = V::load(half_log_det);
     V::store(in.c + c0, c);
     V::store(in.s + c0, s);
     V::store(in.l00 + c0, hl + q * hd);

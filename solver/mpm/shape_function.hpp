@@ -22,21 +22,28 @@ struct Weights1D {
 
 // uGIMP weight of a node at signed distance r = x_p − x_I (Bardenhagen & Kober 2004,
 // piecewise-constant particle characteristic of half-width lp, linear grid functions).
-inline double gimp_weight(double r, double h, double lp) {
-  const double a = std::abs(r);
-  if (a < lp) return 1.0 - (r * r + lp * lp) / (2.0 * h * lp);
-  if (a < h - lp) return 1.0 - a / h;
+// The cell size h and half-width lp of a particle's uGIMP weights along one axis, with
+// the reciprocals the weights multiply by: two divisions per particle and axis instead
+// of one per node and term (gimp_lanes.cpp does the same operations in lanes).
+struct GimpScale {
+  double h, lp, inv_h, inv_h_lp;  // 1/h, 1/(h lp)
+  GimpScale(double h_, double lp_) : h(h_), lp(lp_), inv_h(1.0 / h_), inv_h_lp(inv_h * (1.0 / lp_)) {}
+};
+inline double gimp_weight(double r, const GimpScale& s) {
+  const double a = std::abs(r), h = s.h, lp = s.lp;
+  if (a < lp) return 1.0 - (r * r + lp * lp) * (0.5 * s.inv_h_lp);
+  if (a < h - lp) return 1.0 - a * s.inv_h;
   if (a < h + lp) {
     const double d = h + lp - a;
-    return d * d / (4.0 * h * lp);
+    return d * d * (0.25 * s.inv_h_lp);
   }
   return 0.0;
 }
-inline double gimp_gradient(double r, double h, double lp) {
-  const double a = std::abs(r), sign = r < 0.0 ? -1.0 : 1.0;
-  if (a < lp) return -r / (h * lp);
-  if (a < h - lp) return -sign / h;
-  if (a < h + lp) return -sign * (h + lp - a) / (2.0 * h * lp);
+inline double gimp_gradient(double r, const GimpScale& s) {
+  const double a = std::abs(r), sign = r < 0.0 ? -1.0 : 1.0, h = s.h, lp = s.lp;
+  if (a < lp) return -r * s.inv_h_lp;
+  if (a < h - lp) return -sign * s.inv_h;
+  if (a < h + lp) return -sign * (h + lp - a) * (0.5 * s.inv_h_lp);
   return 0.0;
 }
 
@@ -53,12 +60,14 @@ inline Weights1D weights_1d(ShapeFunction s, double x_rel, double h, double lp) 
       break;
     }
     case ShapeFunction::gimp: {
+      const GimpScale scale(h, lp);
+      const double gg = x_rel * scale.inv_h;
       // First node strictly inside the support (x_I > x − h − lp).
-      r.first = static_cast<int>(std::floor(g - 1.0 - lp / h)) + 1;
+      r.first = static_cast<int>(std::floor(gg - 1.0 - lp * scale.inv_h)) + 1;
       for (int k = 0; k < 3; ++k) {
-        const double dist = (g - (r.first + k)) * h;
-        r.w[k] = gimp_weight(dist, h, lp);
-        r.dw[k] = gimp_gradient(dist, h, lp);  // ∂S/∂x_p at r = x_p − x_I
+        const double dist = (gg - (r.first + k)) * h;
+        r.w[k] = gimp_weight(dist, scale);
+        r.dw[k] = gimp_gradient(dist, scale);  // ∂S/∂x_p at r = x_p − x_I
       }
       break;
     }

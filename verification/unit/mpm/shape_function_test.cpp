@@ -79,7 +79,7 @@ TEST(ShapeFunction, GimpReducesToAveragedLinearFunction) {
       integral += std::max(0.0, 1.0 - std::abs(x) / h);
     }
     integral /= n;
-    EXPECT_NEAR(gimp_weight(r, h, lp), integral, 1e-8) << r;
+    EXPECT_NEAR(gimp_weight(r, GimpScale(h, lp)), integral, 1e-8) << r;
   }
 }
 
