@@ -20,8 +20,6 @@ struct Weights1D {
   std::array<double, kMaxNodesPerAxis> w{}, dw{};  // dw = ∂S/∂x (1/m)
 };
 
-// uGIMP weight of a node at signed distance r = x_p − x_I (Bardenhagen & Kober 2004,
-// piecewise-constant particle characteristic of half-width lp, linear grid functions).
 // The cell size h and half-width lp of a particle's uGIMP weights along one axis, with
 // the reciprocals the weights multiply by: two divisions per particle and axis instead
 // of one per node and term (gimp_lanes.cpp does the same operations in lanes).
@@ -29,6 +27,10 @@ struct GimpScale {
   double h, lp, inv_h, inv_h_lp;  // 1/h, 1/(h lp)
   GimpScale(double h_, double lp_) : h(h_), lp(lp_), inv_h(1.0 / h_), inv_h_lp(inv_h * (1.0 / lp_)) {}
 };
+
+// uGIMP weight and its slope ∂S/∂x_p for a node at signed distance r = x_p − x_I
+// (Bardenhagen & Kober 2004, piecewise-constant particle characteristic of half-width lp,
+// linear grid functions).
 inline double gimp_weight(double r, const GimpScale& s) {
   const double a = std::abs(r), h = s.h, lp = s.lp;
   if (a < lp) return 1.0 - (r * r + lp * lp) * (0.5 * s.inv_h_lp);
