@@ -32,6 +32,17 @@ struct Lanes {
     return load(v);
   }
   __attribute__((always_inline)) static void store(double* p, d v) { std::memcpy(p, &v, sizeof v); }
+  // v with fn(x) in the lanes whose bit is set: a library function where a lane's series
+  // does not hold (one call per such lane).
+  template <class Fn>
+  __attribute__((always_inline)) static d per_lane_where(unsigned lanes, d v, d x, Fn fn) {
+    if (lanes == 0) return v;
+    double out[W], in[W];
+    store(out, v), store(in, x);
+    for (int i = 0; i < W; ++i)
+      if (lanes >> i & 1u) out[i] = fn(in[i]);
+    return load(out);
+  }
   // Bit i set where lane i of the mask is. (One instruction in intrinsics, but those do
   // not inline through these templates into the per-ISA functions, GCC 12; an OR-fold of
   // the lanes measured no faster than this loop.)

@@ -131,15 +131,9 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
     const d by_series = exp_series(trace);
     const m small = V::select(trace < 0.0, -trace, trace) < kSeriesLimit;
     // Lanes beyond the series' range call the library; the law takes the flagged ones.
-    d J = V::select(small, by_series, d{} + 1.0);
-    const unsigned flagged = V::bits(scalar), by_library = V::bits(~small) & ~flagged;
-    if (by_library != 0) {
-      double J_lanes[W];
-      V::store(J_lanes, J);
-      for (int i = 0; i < W; ++i)
-        if (by_library >> i & 1u) J_lanes[i] = std::exp(trace[i]);
-      J = V::load(J_lanes);
-    }
+    const unsigned flagged = V::bits(scalar);
+    d J = V::per_lane_where(V::bits(~small) & ~flagged, V::select(small, by_series, d{} + 1.0), trace,
+                            [](double t) { return std::exp(t); });
     J = V::select(scalar, d{} + 1.0, J);
     by_law |= flagged << c0;
     V::store(in.k00 + c0, rt00 * c + rt01 * ms);

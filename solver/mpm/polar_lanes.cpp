@@ -37,14 +37,8 @@ __attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in
     const m near_one = V::select(z < 0.0, -z, z) < kSeriesLimit;
     const unsigned flagged = V::bits(~fine), by_library = V::bits(~near_one) & ~flagged;
     scalar |= flagged << c0;
-    d hl = V::select(fine, by_series, d{} + 0.0);
-    if (by_library != 0) {
-      double lanes[W];
-      V::store(lanes, hl);
-      for (int i = 0; i < W; ++i)
-        if (by_library >> i & 1u) lanes[i] = 0.5 * std::log(det[i]);
-      hl = V::load(lanes);
-    }
+    const d hl = V::per_lane_where(by_library, V::select(fine, by_series, d{} + 0.0), det,
+                                   [](double d_lane) { return 0.5 * std::log(d_lane); });
     V::store(in.c + c0, c);
     V::store(in.s + c0, s);
     V::store(in.l00 + c0, hl + q * hd);

@@ -8,8 +8,8 @@
 // ½ ln d = atanh z with z = (d − 1)/(d + 1), and atanh z = z (1 + z²/3 + z⁴/5 + …): for
 // |z| < 0.1 (d in 0.818 … 1.222) the terms to z¹⁵ leave out < z¹⁶/17 < 6e-18 relative.
 // d − 1 is exact there (Sterbenz), so z carries two roundings (d + 1 and the division)
-// and the sum one more: two ulps at most (the library's log: one). exp t = Σ tᵏ/k! for |t| < 0.1: the terms to t¹⁰ leave
-// out < 0.1¹¹/11! ≈ 2.5e-19.
+// and the sum one more: two ulps at most (the library's log: one). exp t = Σ tᵏ/k! for
+// |t| < 0.1: the terms to t¹⁰ leave out < 0.1¹¹/11! ≈ 2.5e-19.
 #include <cmath>
 
 namespace pdmpm::mpm {

@@ -29,7 +29,6 @@ TEST(J2PlaneStress, NewtonStartsAtOrLeftOfTheRoot) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   auto sqrt_of = [](double x) { return std::sqrt(x); };
-  int checked = 0;
   for (int i = 0; i < 100000; ++i) {
     const double kappa0 = k.yield_stress * (1.0 + 3.0 * u(rng));
     // Trial states from just beyond the yield surface to fifty times beyond it, any mix
@@ -41,9 +40,7 @@ TEST(J2PlaneStress, NewtonStartsAtOrLeftOfTheRoot) {
     ASSERT_GT(start, 0.0);
     // At or left of the root: f ≥ 0 there, to f's round-off (its terms are ~κ²·over²).
     EXPECT_GE(consistency(start, s1, s2, c1, c2, kappa0, H), -1e-14 * S) << "s1 " << s1 << " s2 " << s2;
-    ++checked;
   }
-  EXPECT_EQ(checked, 100000);
   // One mode alone (s₁ = 0: a pure in-plane deviator): the start is the root.
   const double kappa0 = k.yield_stress, S = 2.0 / 3.0 * kappa0 * kappa0 * 1.21;
   const double start = plane_stress_newton_start(0.0, S, c1, c2, kappa0, H, sqrt_of);
