@@ -19,13 +19,8 @@ __attribute__((always_inline)) inline void gimp_lanes_by(const double* x_rel, co
     const d x = V::load(x_rel + c0), lp = V::load(lp_in + c0);
     const d g = x * inv_h, inv_h_lp = inv_h * (1.0 / lp);
     // First node strictly inside the support (x_I > x − h − lp), as weights_1d.
-    const d reach = g - 1.0 - lp * inv_h;
-    double below[W];
-    for (int i = 0; i < W; ++i) {
-      below[i] = std::floor(reach[i]);
-      out.first[c0 + i] = static_cast<int>(below[i]) + 1;
-    }
-    const d before = V::load(below);
+    const d before = V::floor(g - 1.0 - lp * inv_h);
+    for (int i = 0; i < W; ++i) out.first[c0 + i] = static_cast<int>(before[i]) + 1;
     const d zero{}, one = zero + 1.0, hv = zero + h, inv_hv = zero + inv_h;
     const d half = 0.5 * inv_h_lp, quarter = 0.25 * inv_h_lp;
     for (int k = 0; k < 3; ++k) {

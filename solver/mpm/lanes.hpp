@@ -31,6 +31,15 @@ struct Lanes {
     for (double& e : v) e = std::sqrt(e);
     return load(v);
   }
+  // Per lane std::floor (exact, so any instruction gives the same bits); on the vector
+  // itself, as sqrt: storing lanes one by one and loading them as a vector waits for
+  // each store (store forwarding).
+  __attribute__((always_inline)) static d floor(d x) {
+    double v[W];
+    std::memcpy(v, &x, sizeof x);
+    for (double& e : v) e = std::floor(e);
+    return load(v);
+  }
   __attribute__((always_inline)) static void store(double* p, d v) { std::memcpy(p, &v, sizeof v); }
   // v with fn(x) in the lanes whose bit is set: a library function where a lane's series
   // does not hold (one call per such lane).

@@ -8,6 +8,12 @@ namespace pdmpm::mpm {
 
 namespace {
 
+// A particle whose external force is zero adds only zeros to f_ext of its nodes, and
+// adding ±0 to a sum that starts at +0 leaves its bits as they are (a sum of such
+// terms is never −0): skipping it is exact. In a hybrid run only the transition
+// particles carry one (the coupling force), a few per cent of the grid's particles.
+bool carries_external_force(const Vec<2>& fe) { return fe[0] != 0.0 || fe[1] != 0.0; }
+
 void prefetch_scattered(const ScatterSource2& s, ScatterFields what, Index p) {
   __builtin_prefetch(s.mass + p);
   __builtin_prefetch(s.velocity + p);
@@ -27,12 +33,13 @@ void scatter_rows_scalar(const ScatterSource2& s, const ScatterTarget2& g, Scatt
     const Vec<2> mv = m * s.velocity[p];
     const Mat<2> Vtau = s.volume[p] * s.tau[k];
     const Vec<2> fe = s.external[p];
+    const bool external = what.external && carries_external_force(fe);
     for_each_grid_node<2, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<2>& grad) {
       if (what.mass) g.mass[node] += w * m;
       if (what.momentum) g.momentum[node] += w * mv;
       if (what.forces) {
         g.force_internal[node] -= Vtau * grad;
-        if (what.external) g.force_external[node] += w * fe;
+        if (external) g.force_external[node] += w * fe;
       }
     });
   }
@@ -56,6 +63,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
     const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
     const __m512d dwx2 = _mm512_set_pd(0.0, 0.0, dx[2], dx[2], dx[1], dx[1], dx[0], dx[0]);
     __m512d va = _mm512_setzero_pd(), vb = va, fe = va;
+    const bool external = what.forces && what.external && carries_external_force(s.external[p]);
     if (what.forces) {
       const double vol = s.volume[p];
       const Mat<2>& tau = s.tau[k];
@@ -85,7 +93,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
         double* at = g.force_internal[row].data();
         const __m512d f = _mm512_add_pd(_mm512_mul_pd(va, gx), _mm512_mul_pd(vb, gy));
         _mm512_mask_storeu_pd(at, six, _mm512_sub_pd(_mm512_maskz_loadu_pd(six, at), f));
-        if (what.external) {
+        if (external) {
           double* ate = g.force_external[row].data();
           _mm512_mask_storeu_pd(ate, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, ate), _mm512_mul_pd(w2, fe)));
         }

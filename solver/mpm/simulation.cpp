@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 #include "solver/core/error.hpp"
@@ -60,11 +61,15 @@ class PhaseClock {
   double last_ = omp_get_wtime();
 };
 
+// Every cache line of a[p]: an entry of 72 or 80 bytes (τ, the plastic history) can
+// span three lines, and its first and last byte name only two of them.
 template <class T>
 void prefetch(const std::vector<T>& a, Index p) {
-  const char* first = reinterpret_cast<const char*>(a.data() + p);
-  __builtin_prefetch(first);
-  if constexpr (sizeof(T) > 8) __builtin_prefetch(first + sizeof(T) - 1);
+  constexpr std::uintptr_t kLine = 64;
+  const auto first = reinterpret_cast<std::uintptr_t>(a.data() + p) & ~(kLine - 1);
+  const auto last = reinterpret_cast<std::uintptr_t>(a.data() + p) + sizeof(T) - 1;
+  for (std::uintptr_t line = first; line <= last; line += kLine)
+    __builtin_prefetch(reinterpret_cast<const void*>(line));
 }
 
 // The arrays' entries of the particle kPrefetchAhead positions after position k of `order`.
@@ -360,12 +365,14 @@ void Simulation<D>::scatter(Scatter what) {
     const Vec<D> mv = m * particles_.v[p];
     const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff[p].template topLeftCorner<D, D>();
     const Vec<D> fe = ext_force_[p];
+    // A zero external force adds only ±0 to sums that start at +0: exact to skip (scatter_rows.cpp).
+    const bool adds_external = external && !fe.isZero(0.0);
     for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>& g) {
       if (what.mass) grid_.mass[node] += w * m;
       if (what.momentum) grid_.momentum[node] += w * mv;
       if (what.forces) {
         grid_.force_internal[node] -= Vtau * g;
-        if (external) grid_.force_external[node] += w * fe;  // else it stays zero
+        if (adds_external) grid_.force_external[node] += w * fe;  // else it stays zero
       }
     });
   });
