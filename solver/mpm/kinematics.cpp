@@ -71,9 +71,12 @@ namespace {
 // ½ ln C and C^(−1/2) of a symmetric positive definite 3×3 C near a multiple of the
 // identity: with m = tr C/3 and X = (C − mI)/m (the deviatoric stretch, |X| ~ 2 × the
 // shear strain), ln C = (ln m) I + Σ (−1)^(k+1) X^k/k and C^(−1/2) = m^(−1/2) Σ a_k X^k,
-// a_k = binom(−1/2, k), one set of powers for both, summed until |X|^k < 1e-17 |X| (six
-// products at |X| ~ 1e-3, seventeen at 0.1). False (nothing written) where |X| ≥ 0.1: the
-// eigen-decomposition takes those.
+// a_k = binom(−1/2, k), summed until |X|^k < 1e-17 |X| (six terms at |X| ~ 1e-3,
+// seventeen at 0.1). False (nothing written) where |X| ≥ 0.1: the eigen-decomposition
+// takes those. The powers are not formed: by Cayley–Hamilton X³ = e₁X² − e₂X + e₃I
+// (e₁ = tr X, e₂ = ½(e₁² − tr X²), e₃ = det X), so X^k = α_k I + β_k X + γ_k X² with
+// α_{k+1} = e₃γ_k, β_{k+1} = α_k − e₂γ_k, γ_{k+1} = β_k + e₁γ_k — three scalars a term
+// where a matrix product was (the 3D stress update's longest chain).
 bool half_log_and_inverse_root_by_series(const Mat<3>& C, Mat<3>& half_log_C, Mat<3>& inv_root_C) {
   const double m = C.trace() / 3.0;
   if (!(m > 0.0)) return false;
@@ -81,17 +84,24 @@ bool half_log_and_inverse_root_by_series(const Mat<3>& C, Mat<3>& half_log_C, Ma
   const Mat<3> X = (C - m * I) / m;
   const double r = X.norm();  // Frobenius ≥ spectral: |X^k| ≤ r^k
   if (!(r < kSeriesLimit)) return false;
-  Mat<3> power = X, log_sum = X, root_sum = I - 0.5 * X;
+  const Mat<3> X2 = X * X;
+  const double e1 = X.trace(), e2 = 0.5 * (e1 * e1 - X2.trace()), e3 = X.determinant();
+  // Σ (−1)^(k+1) X^k/k and Σ a_k X^k as coefficients of I, X, X²; the k = 1 terms first.
+  double log_i = 0.0, log_x = 1.0, log_x2 = 0.0;
+  double root_i = 1.0, root_x = -0.5, root_x2 = 0.0;
+  double alpha = 0.0, beta = 1.0, gamma = 0.0;  // X^1
   double a = -0.5, bound = r;
   for (int k = 2; bound > 1e-17 * r; ++k) {
-    power = power * X;
+    const double next_alpha = e3 * gamma, next_beta = alpha - e2 * gamma, next_gamma = beta + e1 * gamma;
+    alpha = next_alpha, beta = next_beta, gamma = next_gamma;
     bound *= r;
     a *= -(2.0 * k - 1.0) / (2.0 * k);
-    log_sum += ((k % 2 == 0 ? -1.0 : 1.0) / k) * power;
-    root_sum += a * power;
+    const double c = (k % 2 == 0 ? -1.0 : 1.0) / k;
+    log_i += c * alpha, log_x += c * beta, log_x2 += c * gamma;
+    root_i += a * alpha, root_x += a * beta, root_x2 += a * gamma;
   }
-  half_log_C = series_half_log(m) * I + 0.5 * log_sum;
-  inv_root_C = (1.0 / std::sqrt(m)) * root_sum;
+  half_log_C = (series_half_log(m) + 0.5 * log_i) * I + (0.5 * log_x) * X + (0.5 * log_x2) * X2;
+  inv_root_C = (1.0 / std::sqrt(m)) * (root_i * I + root_x * X + root_x2 * X2);
   return true;
 }
 
