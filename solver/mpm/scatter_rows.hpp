@@ -47,4 +47,31 @@ void scatter_rows(const ScatterSource2& source, const ScatterTarget2& grid, Scat
 using ScatterRowsFunction = void (*)(const ScatterSource2&, const ScatterTarget2&, ScatterFields, Index, Index);
 std::vector<LaneVariant<ScatterRowsFunction>> scatter_rows_variants();
 
+// The 3D scatter with a 3 × 3 × 3 stencil, a stencil row (three nodes along x, nine
+// doubles of a vector field) in one eight-lane instruction and its ninth double apart.
+// The scalar version is Simulation's generic scatter, Eigen's V₀τ∇S included (its x and
+// y rows sum (a + b) + c, its z row a + (b + c)); the vector one gives its bits.
+struct ScatterSource3 {
+  const Index* order = nullptr;
+  const Stencil<3>* stencil = nullptr;  // stencil[k], in schedule order
+  const double* mass = nullptr;
+  const Vec<3>* velocity = nullptr;
+  const double* volume = nullptr;
+  const Mat<3>* tau = nullptr;  // Kirchhoff stress of the particle (tau[order[k]])
+  const Vec<3>* external = nullptr;
+};
+
+struct ScatterTarget3 {
+  double* mass = nullptr;
+  Vec<3>* momentum = nullptr;
+  Vec<3>* force_internal = nullptr;
+  Vec<3>* force_external = nullptr;
+  IVec<3> stride = IVec<3>::Zero();  // node index steps along x (1), y and z
+};
+
+void scatter_rows3(const ScatterSource3& source, const ScatterTarget3& grid, ScatterFields what, Index k_begin,
+                   Index k_end);
+using ScatterRows3Function = void (*)(const ScatterSource3&, const ScatterTarget3&, ScatterFields, Index, Index);
+std::vector<LaneVariant<ScatterRows3Function>> scatter_rows3_variants();
+
 }  // namespace pdmpm::mpm

@@ -358,6 +358,20 @@ void Simulation<D>::scatter(Scatter what) {
       return;
     }
   }
+  if constexpr (D == 3) {
+    if (K_ == 3) {  // a stencil row per instruction (scatter_rows.hpp)
+      const ScatterSource3 source{order.data(),        stencil_.data(),          state_.mass.data(),
+                                  particles_.v.data(), particles_.volume.data(), state_.kirchhoff.data(),
+                                  ext_force_.data()};
+      const ScatterTarget3 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
+                                  grid_.force_external.data(), stride};
+      const ScatterFields fields{what.mass, what.momentum, what.forces, external};
+      schedule_.for_each_block(
+          [&](Index k_begin, Index k_end) { scatter_rows3(source, target, fields, k_begin, k_end); });
+      fold_grid(what);
+      return;
+    }
+  }
   schedule_.for_each([&](Index k, Index p) {
     prefetch_ahead(order, k, state_.mass, particles_.v);
     if (what.forces) prefetch_ahead(order, k, particles_.volume, state_.kirchhoff, ext_force_);
