@@ -85,7 +85,111 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
   return finite;
 }
 
+// The reference: Simulation's generic G2P for D = 3, K = 3.
+bool g2p_rows3_scalar(const G2PArrays3& a, G2PParameters q, Index k_begin, Index k_end) {
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    const Index p = a.order[k];
+    Vec<3> v_pic = Vec<3>::Zero(), dv = Vec<3>::Zero();
+    for_each_grid_node<3, 3>(a.stencil[k], a.stride, [&](Index node, double w, const Vec<3>&) {
+      v_pic += w * a.grid_velocity_new[node];
+      dv += w * (a.grid_velocity_new[node] - a.grid_velocity[node]);
+    });
+    a.velocity[p] = q.flip * (a.velocity[p] + dv) + (1.0 - q.flip) * v_pic;
+    a.displacement[p] += q.dt * v_pic;
+    finite = finite && a.velocity[p].allFinite() && a.displacement[p].allFinite();
+    if (q.remap) {
+      const Vec<3> mv = a.mass[p] * a.velocity[p];
+      for_each_grid_node<3, 3>(a.stencil[k], a.stride,
+                               [&](Index node, double w, const Vec<3>&) { a.grid_momentum[node] += w * mv; });
+    }
+  }
+  return finite;
+}
+
+// Lanes 0–7 of a row hold node 0's x, y, z, node 1's x, y, z and node 2's x, y (the
+// layout of three Vec<3>); node i's x, y, z moved to lanes 0–2, the rest zero.
+__attribute__((target("avx512f"), always_inline)) inline __m512d row_node(__m512d row, double ninth, int i) {
+  switch (i) {
+    case 0:
+      return _mm512_maskz_mov_pd(0x07, row);
+    case 1:
+      return _mm512_maskz_permutexvar_pd(0x07, _mm512_set_epi64(0, 0, 0, 0, 0, 5, 4, 3), row);
+    default:
+      return _mm512_mask_broadcastsd_pd(
+          _mm512_maskz_permutexvar_pd(0x03, _mm512_set_epi64(0, 0, 0, 0, 0, 0, 7, 6), row), 0x04, _mm_set_sd(ninth));
+  }
+}
+
+__attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2PParameters q, Index k_begin,
+                                                         Index k_end) {
+  const __mmask8 xyz = 0x07;
+  const __m512d flip = _mm512_set1_pd(q.flip), pic = _mm512_set1_pd(1.0 - q.flip), dt = _mm512_set1_pd(q.dt);
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    const Index p = a.order[k];
+    const Stencil<3>& st = a.stencil[k];
+    const std::array<double, 3>& x = st.w[0];
+    const __m512d wx = _mm512_set_pd(x[2], x[2], x[1], x[1], x[1], x[0], x[0], x[0]);
+    const Index base = st.first[0] + st.first[1] * a.stride[1] + st.first[2] * a.stride[2];
+    __m512d v_pic = _mm512_setzero_pd(), dv = v_pic;
+    __m512d w[9];  // S of the row's nodes per lane; the remap uses them again
+    double w2[9];  // node 2's, for the ninth double
+    for (int l = 0; l < 3; ++l)
+      for (int j = 0; j < 3; ++j) {
+        const int r = 3 * l + j;
+        const Index row = base + j * a.stride[1] + l * a.stride[2];
+        const double wy = st.w[1][j], wz = st.w[2][l];
+        w[r] = _mm512_mul_pd(_mm512_mul_pd(wx, _mm512_set1_pd(wy)), _mm512_set1_pd(wz));  // (Sx Sy) Sz
+        w2[r] = x[2] * wy * wz;
+        const double* vn_at = a.grid_velocity_new[row].data();
+        const double* vo_at = a.grid_velocity[row].data();
+        const __m512d vn = _mm512_loadu_pd(vn_at), vo = _mm512_loadu_pd(vo_at);
+        const __m512d c_pic = _mm512_mul_pd(w[r], vn), c_dv = _mm512_mul_pd(w[r], _mm512_sub_pd(vn, vo));
+        const double pic9 = w2[r] * vn_at[8], dv9 = w2[r] * (vn_at[8] - vo_at[8]);
+        for (int i = 0; i < 3; ++i) {  // node by node, as the scalar sum
+          v_pic = _mm512_add_pd(v_pic, row_node(c_pic, pic9, i));
+          dv = _mm512_add_pd(dv, row_node(c_dv, dv9, i));
+        }
+      }
+    double* vp = a.velocity[p].data();
+    double* up = a.displacement[p].data();
+    const __m512d v = _mm512_add_pd(_mm512_mul_pd(flip, _mm512_add_pd(_mm512_maskz_loadu_pd(xyz, vp), dv)),
+                                    _mm512_mul_pd(pic, v_pic));
+    const __m512d u = _mm512_add_pd(_mm512_maskz_loadu_pd(xyz, up), _mm512_mul_pd(dt, v_pic));
+    _mm512_mask_storeu_pd(vp, xyz, v);
+    _mm512_mask_storeu_pd(up, xyz, u);
+    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN (lanes 3–7 are zero).
+    const __m512d zero = _mm512_setzero_pd();
+    finite = finite && _mm512_cmp_pd_mask(_mm512_sub_pd(v, v), zero, _CMP_EQ_OQ) == 0xff &&
+        _mm512_cmp_pd_mask(_mm512_sub_pd(u, u), zero, _CMP_EQ_OQ) == 0xff;
+    if (q.remap) {
+      const double m = a.mass[p];
+      const Vec<3> mv(m * vp[0], m * vp[1], m * vp[2]);
+      const __m512d mv8 = _mm512_set_pd(mv[1], mv[0], mv[2], mv[1], mv[0], mv[2], mv[1], mv[0]);
+      for (int l = 0; l < 3; ++l)
+        for (int j = 0; j < 3; ++j) {
+          const int r = 3 * l + j;
+          double* at = a.grid_momentum[base + j * a.stride[1] + l * a.stride[2]].data();
+          _mm512_storeu_pd(at, _mm512_add_pd(_mm512_loadu_pd(at), _mm512_mul_pd(w[r], mv8)));
+          at[8] += w2[r] * mv[2];
+        }
+    }
+  }
+  return finite;
+}
+
 }  // namespace
+
+std::vector<LaneVariant<G2PRows3Function>> g2p_rows3_variants() {
+  // No AVX2 or SSE2 rows: those machines run the scalar reference.
+  return lane_variants<G2PRows3Function>(g2p_rows3_scalar, g2p_rows3_scalar, g2p_rows3_avx512);
+}
+
+bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin, Index k_end) {
+  static const G2PRows3Function chosen = choose_lane_variant(g2p_rows3_variants());
+  return chosen(arrays, parameters, k_begin, k_end);
+}
 
 std::vector<LaneVariant<G2PRowsFunction>> g2p_rows_variants() {
   // No AVX2 or SSE2 rows yet: those machines run the scalar reference.

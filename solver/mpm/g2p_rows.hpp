@@ -40,4 +40,23 @@ bool g2p_rows(const G2PArrays2& arrays, G2PParameters parameters, Index k_begin,
 using G2PRowsFunction = bool (*)(const G2PArrays2&, G2PParameters, Index, Index);
 std::vector<LaneVariant<G2PRowsFunction>> g2p_rows_variants();
 
+// The 3D pass with a 3 × 3 × 3 stencil: a stencil row (three nodes' x, y, z, nine
+// doubles) in one eight-lane instruction and its ninth double apart; the nodes are
+// added one by one in the scalar version's order (Simulation's generic G2P).
+struct G2PArrays3 {
+  const Index* order = nullptr;
+  const Stencil<3>* stencil = nullptr;
+  const double* mass = nullptr;
+  const Vec<3>* grid_velocity = nullptr;
+  const Vec<3>* grid_velocity_new = nullptr;
+  Vec<3>* velocity = nullptr;
+  Vec<3>* displacement = nullptr;
+  Vec<3>* grid_momentum = nullptr;
+  IVec<3> stride = IVec<3>::Zero();  // node index steps along x (1), y and z
+};
+
+bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin, Index k_end);
+using G2PRows3Function = bool (*)(const G2PArrays3&, G2PParameters, Index, Index);
+std::vector<LaneVariant<G2PRows3Function>> g2p_rows3_variants();
+
 }  // namespace pdmpm::mpm

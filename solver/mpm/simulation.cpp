@@ -930,7 +930,7 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
                             [&](Index node, double w, const Vec<D>&) { grid_.momentum[node] += w * mv; });
     }
   };
-  // The particles at schedule positions [k_begin, k_end); in 2D with 3 × 3 stencils a
+  // The particles at schedule positions [k_begin, k_end); with 3 × 3 (× 3) stencils a
   // stencil row per instruction (g2p_rows.hpp).
   auto move_run = [&](Index k_begin, Index k_end) {
     if constexpr (D == 2) {
@@ -939,6 +939,15 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
                                 grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
                                 particles_.u.data(),   grid_.momentum.data(),     stride[1]};
         if (!g2p_rows(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
+        return;
+      }
+    }
+    if constexpr (D == 3) {
+      if (K_ == 3) {
+        const G2PArrays3 arrays{order.data(),          stencil_.data(),           state_.mass.data(),
+                                grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
+                                particles_.u.data(),   grid_.momentum.data(),     stride};
+        if (!g2p_rows3(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
         return;
       }
     }
