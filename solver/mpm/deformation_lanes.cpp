@@ -81,7 +81,59 @@ __attribute__((target("avx512f"))) void velocity_gradient_avx512(DeformationLane
   }
 }
 
+// The reference: Simulation<3>::velocity_gradient's sum, L(a, b) += v_a g_b node by node.
+Mat<3> velocity_gradient_rows3_scalar(const Stencil<3>& stencil, const Vec<3>* vg, const IVec<3>& stride) {
+  double L[3][3] = {};
+  for_each_grid_node<3, 3>(stencil, stride, [&](Index node, double, const Vec<3>& g) {
+    const Vec<3>& v = vg[node];
+    for (int a = 0; a < 3; ++a)
+      for (int b = 0; b < 3; ++b) L[a][b] += v[a] * g[b];
+  });
+  Mat<3> out;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out(a, b) = L[a][b];
+  return out;
+}
+
+// Column b of L is Σ v_I ∂S_I/∂x_b: per row, the nodes' velocities times ∂S/∂x_b lane by
+// lane, then node by node into the column (lanes 0–2).
+__attribute__((target("avx512f"))) Mat<3> velocity_gradient_rows3_avx512(const Stencil<3>& st, const Vec<3>* vg,
+                                                                         const IVec<3>& stride) {
+  __m512d col0 = _mm512_setzero_pd(), col1 = col0, col2 = col0;
+  const Index base = st.first[0] + st.first[1] * stride[1] + st.first[2] * stride[2];
+  for (int l = 0; l < 3; ++l)
+    for (int j = 0; j < 3; ++j) {
+      const double* v_at = vg[base + j * stride[1] + l * stride[2]].data();
+      const Row3Shape shape = row3_shape(st, j, l, true);
+      const __m512d v = _mm512_loadu_pd(v_at);
+      const __m512d c0 = _mm512_mul_pd(v, shape.gx), c1 = _mm512_mul_pd(v, shape.gy), c2 = _mm512_mul_pd(v, shape.gz);
+      const double n0 = v_at[8] * shape.gx2, n1 = v_at[8] * shape.gy2, n2 = v_at[8] * shape.gz2;
+      for (int i = 0; i < 3; ++i) {
+        col0 = _mm512_add_pd(col0, row_node(c0, n0, i));
+        col1 = _mm512_add_pd(col1, row_node(c1, n1, i));
+        col2 = _mm512_add_pd(col2, row_node(c2, n2, i));
+      }
+    }
+  alignas(64) double c[3][8];
+  _mm512_store_pd(c[0], col0), _mm512_store_pd(c[1], col1), _mm512_store_pd(c[2], col2);
+  Mat<3> out;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out(a, b) = c[b][a];
+  return out;
+}
+
 }  // namespace
+
+std::vector<LaneVariant<VelocityGradientRows3Function>> velocity_gradient_rows3_variants() {
+  // No AVX2 or SSE2 rows: those machines run the scalar reference.
+  return lane_variants<VelocityGradientRows3Function>(velocity_gradient_rows3_scalar, velocity_gradient_rows3_scalar,
+                                                      velocity_gradient_rows3_avx512);
+}
+
+Mat<3> velocity_gradient_rows3(const Stencil<3>& stencil, const Vec<3>* grid_velocity, const IVec<3>& stride) {
+  static const VelocityGradientRows3Function chosen = choose_lane_variant(velocity_gradient_rows3_variants());
+  return chosen(stencil, grid_velocity, stride);
+}
 
 std::vector<LaneVariant<VelocityGradientLanesFunction>> velocity_gradient_lanes_variants() {
   // No AVX2 or SSE2 rows: those machines run the scalar reference.

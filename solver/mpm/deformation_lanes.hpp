@@ -39,4 +39,13 @@ void velocity_gradient_lanes(DeformationLanes& lanes, const Stencil<2>* stencil,
 using VelocityGradientLanesFunction = void (*)(DeformationLanes&, const Stencil<2>*, int, const Vec<2>*, Index);
 std::vector<LaneVariant<VelocityGradientLanesFunction>> velocity_gradient_lanes_variants();
 
+// The 3D velocity gradient L = Σ v_I ⊗ ∇S_I of one particle over its 3 × 3 × 3 stencil, a
+// stencil row (three nodes' x, y, z) per instruction and the nodes added in the scalar
+// loop's order (Simulation<3>::velocity_gradient), so its bits; stride = node index
+// steps along x (1), y and z.
+Mat<3> velocity_gradient_rows3(const Stencil<3>& stencil, const Vec<3>* grid_velocity, const IVec<3>& stride);
+
+using VelocityGradientRows3Function = Mat<3> (*)(const Stencil<3>&, const Vec<3>*, const IVec<3>&);
+std::vector<LaneVariant<VelocityGradientRows3Function>> velocity_gradient_rows3_variants();
+
 }  // namespace pdmpm::mpm

@@ -107,20 +107,6 @@ bool g2p_rows3_scalar(const G2PArrays3& a, G2PParameters q, Index k_begin, Index
   return finite;
 }
 
-// Lanes 0–7 of a row hold node 0's x, y, z, node 1's x, y, z and node 2's x, y (the
-// layout of three Vec<3>); node i's x, y, z moved to lanes 0–2, the rest zero.
-__attribute__((target("avx512f"), always_inline)) inline __m512d row_node(__m512d row, double ninth, int i) {
-  switch (i) {
-    case 0:
-      return _mm512_maskz_mov_pd(0x07, row);
-    case 1:
-      return _mm512_maskz_permutexvar_pd(0x07, _mm512_set_epi64(0, 0, 0, 0, 0, 5, 4, 3), row);
-    default:
-      return _mm512_mask_broadcastsd_pd(
-          _mm512_maskz_permutexvar_pd(0x03, _mm512_set_epi64(0, 0, 0, 0, 0, 0, 7, 6), row), 0x04, _mm_set_sd(ninth));
-  }
-}
-
 __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2PParameters q, Index k_begin,
                                                          Index k_end) {
   const __mmask8 xyz = 0x07;
@@ -129,8 +115,6 @@ __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2
   for (Index k = k_begin; k < k_end; ++k) {
     const Index p = a.order[k];
     const Stencil<3>& st = a.stencil[k];
-    const std::array<double, 3>& x = st.w[0];
-    const __m512d wx = _mm512_set_pd(x[2], x[2], x[1], x[1], x[1], x[0], x[0], x[0]);
     const Index base = st.first[0] + st.first[1] * a.stride[1] + st.first[2] * a.stride[2];
     __m512d v_pic = _mm512_setzero_pd(), dv = v_pic;
     __m512d w[9];  // S of the row's nodes per lane; the remap uses them again
@@ -139,9 +123,8 @@ __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2
       for (int j = 0; j < 3; ++j) {
         const int r = 3 * l + j;
         const Index row = base + j * a.stride[1] + l * a.stride[2];
-        const double wy = st.w[1][j], wz = st.w[2][l];
-        w[r] = _mm512_mul_pd(_mm512_mul_pd(wx, _mm512_set1_pd(wy)), _mm512_set1_pd(wz));  // (Sx Sy) Sz
-        w2[r] = x[2] * wy * wz;
+        const Row3Shape shape = row3_shape(st, j, l, false);
+        w[r] = shape.w, w2[r] = shape.w2;
         const double* vn_at = a.grid_velocity_new[row].data();
         const double* vo_at = a.grid_velocity[row].data();
         const __m512d vn = _mm512_loadu_pd(vn_at), vo = _mm512_loadu_pd(vo_at);
@@ -166,7 +149,7 @@ __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2
     if (q.remap) {
       const double m = a.mass[p];
       const Vec<3> mv(m * vp[0], m * vp[1], m * vp[2]);
-      const __m512d mv8 = _mm512_set_pd(mv[1], mv[0], mv[2], mv[1], mv[0], mv[2], mv[1], mv[0]);
+      const __m512d mv8 = row_lanes(mv);
       for (int l = 0; l < 3; ++l)
         for (int j = 0; j < 3; ++j) {
           const int r = 3 * l + j;

@@ -3,6 +3,7 @@
 #include <immintrin.h>
 
 #include "solver/mpm/parallel.hpp"
+#include "solver/mpm/stencil_row.hpp"
 
 namespace pdmpm::mpm {
 
@@ -123,21 +124,14 @@ void scatter_rows3_scalar(const ScatterSource3& s, const ScatterTarget3& g, Scat
   }
 }
 
-// Lanes 0–7 of a row: node 0's x, y, z, node 1's x, y, z, node 2's x, y; node 2's z is
-// the row's ninth double, done in scalars with the same operations.
-__attribute__((target("avx512f"), always_inline)) inline __m512d row_lanes(const Vec<3>& a) {
-  return _mm512_set_pd(a[1], a[0], a[2], a[1], a[0], a[2], a[1], a[0]);  // a's x, y, z per node
-}
-
+// A row's nine doubles: lanes 0–7 and the ninth apart (stencil_row.hpp).
 __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource3& s, const ScatterTarget3& g,
                                                              ScatterFields what, Index k_begin, Index k_end) {
   const __mmask8 three = 0x07, z_lanes = 0x24;  // lanes 2 and 5 hold z components
   for (Index k = k_begin; k < k_end; ++k) {
     const Index p = s.order[k];
     const Stencil<3>& st = s.stencil[k];
-    const std::array<double, 3>&x = st.w[0], &dx = st.dw[0];
-    const __m512d wx = _mm512_set_pd(x[2], x[2], x[1], x[1], x[1], x[0], x[0], x[0]);
-    const __m512d dwx = _mm512_set_pd(dx[2], dx[2], dx[1], dx[1], dx[1], dx[0], dx[0], dx[0]);
+    const std::array<double, 3>& x = st.w[0];
     const __m512d wx3 = _mm512_set_pd(0.0, 0.0, 0.0, 0.0, 0.0, x[2], x[1], x[0]);
     const double m = s.mass[p];
     const Vec<3> mv = m * s.velocity[p];
@@ -156,14 +150,12 @@ __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource
     for (int l = 0; l < 3; ++l)
       for (int j = 0; j < 3; ++j) {
         const Index row = base + j * g.stride[1] + l * g.stride[2];
-        const double wy = st.w[1][j], wz = st.w[2][l], dwy = st.dw[1][j], dwz = st.dw[2][l];
-        const __m512d wyv = _mm512_set1_pd(wy), wzv = _mm512_set1_pd(wz);
-        // for_each_grid_node's S = (Sx Sy) Sz and ∇S = ((∂Sx Sy) Sz, (∂Sy Sx) Sz, (∂Sz Sx) Sy).
-        const __m512d w = _mm512_mul_pd(_mm512_mul_pd(wx, wyv), wzv);
-        const double w2 = x[2] * wy * wz;  // node 2's, for the ninth double
+        const Row3Shape shape = row3_shape(st, j, l, what.forces);
+        const __m512d w = shape.w;
+        const double w2 = shape.w2;
         if (what.mass) {
           double* at = g.mass + row;
-          const __m512d w3 = _mm512_mul_pd(_mm512_mul_pd(wx3, wyv), wzv);
+          const __m512d w3 = _mm512_mul_pd(_mm512_mul_pd(wx3, _mm512_set1_pd(st.w[1][j])), _mm512_set1_pd(st.w[2][l]));
           _mm512_mask_storeu_pd(at, three,
                                 _mm512_add_pd(_mm512_maskz_loadu_pd(three, at), _mm512_mul_pd(w3, _mm512_set1_pd(m))));
         }
@@ -173,16 +165,13 @@ __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource
           at[8] += w2 * mv[2];
         }
         if (what.forces) {
-          const __m512d gx = _mm512_mul_pd(_mm512_mul_pd(dwx, wyv), wzv);
-          const __m512d gy = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(dwy), wx), wzv);
-          const __m512d gz = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(dwz), wx), wyv);
-          const __m512d a = _mm512_mul_pd(va, gx), b = _mm512_mul_pd(vb, gy), c = _mm512_mul_pd(vc, gz);
+          const __m512d a = _mm512_mul_pd(va, shape.gx), b = _mm512_mul_pd(vb, shape.gy),
+                        c = _mm512_mul_pd(vc, shape.gz);
           const __m512d f = _mm512_mask_blend_pd(z_lanes, _mm512_add_pd(_mm512_add_pd(a, b), c),
                                                  _mm512_add_pd(a, _mm512_add_pd(b, c)));
           double* at = g.force_internal[row].data();
           _mm512_storeu_pd(at, _mm512_sub_pd(_mm512_loadu_pd(at), f));
-          const double gx2 = dx[2] * wy * wz, gy2 = dwy * x[2] * wz, gz2 = dwz * x[2] * wy;
-          at[8] -= Vtau(2, 0) * gx2 + (Vtau(2, 1) * gy2 + Vtau(2, 2) * gz2);
+          at[8] -= Vtau(2, 0) * shape.gx2 + (Vtau(2, 1) * shape.gy2 + Vtau(2, 2) * shape.gz2);
           if (external) {
             double* ate = g.force_external[row].data();
             _mm512_storeu_pd(ate, _mm512_add_pd(_mm512_loadu_pd(ate), _mm512_mul_pd(w, fe8)));

@@ -424,6 +424,8 @@ void Simulation<D>::update_nonlocal() {
 // forwarding stall per node: in 3D a third of the step).
 template <int D>
 Mat<D> Simulation<D>::velocity_gradient(Index k, const std::vector<Vec<D>>& vg) const {
+  if constexpr (D == 3)
+    if (K_ == 3) return velocity_gradient_rows3(stencil_[k], vg.data(), grid_.stride);  // the same bits by rows
   double L[D][D] = {};
   for_each_grid_node<D>(stencil_[k], K_, grid_.stride, [&](Index node, double, const Vec<D>& g) {
     const Vec<D>& v = vg[node];

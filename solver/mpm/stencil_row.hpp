@@ -5,6 +5,9 @@
 // in the scalar sum's order.
 #include <immintrin.h>
 
+#include "solver/core/types.hpp"
+#include "solver/mpm/shape_function.hpp"
+
 namespace pdmpm::mpm {
 
 // Node i's x, y of a stencil row.
@@ -17,6 +20,54 @@ __attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m51
     default:
       return __builtin_shufflevector(row, row, 4, 5);
   }
+}
+
+// A 3D 3 × 3 × 3 stencil's row of three nodes: their x, y, z are nine doubles; lanes 0–7
+// hold node 0's x, y, z, node 1's x, y, z and node 2's x, y (one unaligned load of a
+// Vec<3> array reads them), the ninth double (node 2's z) goes apart in scalars.
+
+// a's x, y, z in the lanes of every node of a row.
+__attribute__((target("avx512f"), always_inline)) inline __m512d row_lanes(const Vec<3>& a) {
+  return _mm512_set_pd(a[1], a[0], a[2], a[1], a[0], a[2], a[1], a[0]);
+}
+
+// Node i's x, y, z of a row (ninth: its ninth double) in lanes 0–2, the other lanes zero.
+__attribute__((target("avx512f"), always_inline)) inline __m512d row_node(__m512d row, double ninth, int i) {
+  switch (i) {
+    case 0:
+      return _mm512_maskz_mov_pd(0x07, row);
+    case 1:
+      return _mm512_maskz_permutexvar_pd(0x07, _mm512_set_epi64(0, 0, 0, 0, 0, 5, 4, 3), row);
+    default:
+      return _mm512_mask_broadcastsd_pd(
+          _mm512_maskz_permutexvar_pd(0x03, _mm512_set_epi64(0, 0, 0, 0, 0, 0, 7, 6), row), 0x04, _mm_set_sd(ninth));
+  }
+}
+
+// S and ∇S of a 3D row's nodes per lane as for_each_grid_node forms them — S = (Sx Sy) Sz,
+// ∇S = ((∂Sx Sy) Sz, (∂Sy Sx) Sz, (∂Sz Sx) Sy) — and node 2's in scalars for the ninth double.
+struct Row3Shape {
+  __m512d w, gx, gy, gz;
+  double w2, gx2, gy2, gz2;
+};
+
+__attribute__((target("avx512f"), always_inline)) inline Row3Shape row3_shape(const Stencil<3>& st, int j, int l,
+                                                                              bool gradient) {
+  const std::array<double, 3>&x = st.w[0], &dx = st.dw[0];
+  const double wy = st.w[1][j], wz = st.w[2][l], dwy = st.dw[1][j], dwz = st.dw[2][l];
+  const __m512d wx = _mm512_set_pd(x[2], x[2], x[1], x[1], x[1], x[0], x[0], x[0]);
+  const __m512d wyv = _mm512_set1_pd(wy), wzv = _mm512_set1_pd(wz);
+  Row3Shape r{};
+  r.w = _mm512_mul_pd(_mm512_mul_pd(wx, wyv), wzv);
+  r.w2 = x[2] * wy * wz;
+  if (gradient) {
+    const __m512d dwx = _mm512_set_pd(dx[2], dx[2], dx[1], dx[1], dx[1], dx[0], dx[0], dx[0]);
+    r.gx = _mm512_mul_pd(_mm512_mul_pd(dwx, wyv), wzv);
+    r.gy = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(dwy), wx), wzv);
+    r.gz = _mm512_mul_pd(_mm512_mul_pd(_mm512_set1_pd(dwz), wx), wyv);
+    r.gx2 = dx[2] * wy * wz, r.gy2 = dwy * x[2] * wz, r.gz2 = dwz * x[2] * wy;
+  }
+  return r;
 }
 
 }  // namespace pdmpm::mpm

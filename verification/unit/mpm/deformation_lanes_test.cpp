@@ -84,5 +84,30 @@ TEST(DeformationLanes, VelocityGradientIsTheNodeByNodeSumBitForBit) {
   EXPECT_EQ(compared, 2 * 200 * kDeformationLanes * static_cast<int>(velocity_gradient_lanes_variants().size()));
 }
 
+// The 3D rows against the scalar sum: random uGIMP stencils in a cube of 8³ nodes,
+// random grid velocities, every version the reference's bits in all nine entries.
+TEST(DeformationLanes, VelocityGradient3dIsTheNodeByNodeSumBitForBit) {
+  const int nodes = 8;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, nodes - 3.0);
+  std::vector<Vec<3>> vg;
+  for (int i = 0; i < nodes * nodes * nodes; ++i) vg.emplace_back(u(rng), u(rng), u(rng));
+  const IVec<3> stride(1, nodes, nodes * nodes);
+  const auto variants = velocity_gradient_rows3_variants();
+  int compared = 0;
+  for (int t = 0; t < 300; ++t) {
+    const Vec<3> x(inside(rng), inside(rng), inside(rng));
+    const Stencil<3> st = make_stencil<3>(ShapeFunction::gimp, x, 1.0, Vec<3>::Constant(0.25));
+    const Mat<3> reference = variants.front().function(st, vg.data(), stride);
+    EXPECT_GT(reference.norm(), 0.0);
+    for (const auto& v : variants) {
+      const Mat<3> L = v.function(st, vg.data(), stride);
+      for (int e = 0; e < 9; ++e) EXPECT_TRUE(test::same_bits(L(e), reference(e))) << v.name << ", entry " << e;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 300 * static_cast<int>(variants.size()));
+}
+
 }  // namespace
 }  // namespace pdmpm::mpm
