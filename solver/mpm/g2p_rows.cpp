@@ -15,14 +15,20 @@ void prefetch_moved(const G2PArrays2& a, bool remap, Index p) {
   if (remap) __builtin_prefetch(a.mass + p);
 }
 
-bool g2p_rows_scalar(const G2PArrays2& a, G2PParameters q, Index k_begin, Index k_end) {
-  const IVec<2> stride(1, a.row_stride);
+IVec<2> node_stride(const G2PArrays2& a) { return IVec<2>(1, a.row_stride); }
+IVec<3> node_stride(const G2PArrays3& a) { return a.stride; }
+
+// The reference, 2D and 3D: Simulation's generic G2P with 3 nodes per axis.
+template <int D, class Arrays>
+bool g2p_rows_scalar(const Arrays& a, G2PParameters q, Index k_begin, Index k_end) {
+  const IVec<D> stride = node_stride(a);
   bool finite = true;
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
+    if constexpr (D == 2)
+      if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
     const Index p = a.order[k];
-    Vec<2> v_pic = Vec<2>::Zero(), dv = Vec<2>::Zero();
-    for_each_grid_node<2, 3>(a.stencil[k], stride, [&](Index node, double w, const Vec<2>&) {
+    Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
+    for_each_grid_node<D, 3>(a.stencil[k], stride, [&](Index node, double w, const Vec<D>&) {
       v_pic += w * a.grid_velocity_new[node];
       dv += w * (a.grid_velocity_new[node] - a.grid_velocity[node]);
     });
@@ -30,9 +36,9 @@ bool g2p_rows_scalar(const G2PArrays2& a, G2PParameters q, Index k_begin, Index 
     a.displacement[p] += q.dt * v_pic;
     finite = finite && a.velocity[p].allFinite() && a.displacement[p].allFinite();
     if (q.remap) {
-      const Vec<2> mv = a.mass[p] * a.velocity[p];
-      for_each_grid_node<2, 3>(a.stencil[k], stride,
-                               [&](Index node, double w, const Vec<2>&) { a.grid_momentum[node] += w * mv; });
+      const Vec<D> mv = a.mass[p] * a.velocity[p];
+      for_each_grid_node<D, 3>(a.stencil[k], stride,
+                               [&](Index node, double w, const Vec<D>&) { a.grid_momentum[node] += w * mv; });
     }
   }
   return finite;
@@ -80,28 +86,6 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
         double* at = a.grid_momentum[base + j * a.row_stride].data();
         _mm512_mask_storeu_pd(at, six, _mm512_add_pd(_mm512_maskz_loadu_pd(six, at), _mm512_mul_pd(w2[j], mv3)));
       }
-    }
-  }
-  return finite;
-}
-
-// The reference: Simulation's generic G2P for D = 3, K = 3.
-bool g2p_rows3_scalar(const G2PArrays3& a, G2PParameters q, Index k_begin, Index k_end) {
-  bool finite = true;
-  for (Index k = k_begin; k < k_end; ++k) {
-    const Index p = a.order[k];
-    Vec<3> v_pic = Vec<3>::Zero(), dv = Vec<3>::Zero();
-    for_each_grid_node<3, 3>(a.stencil[k], a.stride, [&](Index node, double w, const Vec<3>&) {
-      v_pic += w * a.grid_velocity_new[node];
-      dv += w * (a.grid_velocity_new[node] - a.grid_velocity[node]);
-    });
-    a.velocity[p] = q.flip * (a.velocity[p] + dv) + (1.0 - q.flip) * v_pic;
-    a.displacement[p] += q.dt * v_pic;
-    finite = finite && a.velocity[p].allFinite() && a.displacement[p].allFinite();
-    if (q.remap) {
-      const Vec<3> mv = a.mass[p] * a.velocity[p];
-      for_each_grid_node<3, 3>(a.stencil[k], a.stride,
-                               [&](Index node, double w, const Vec<3>&) { a.grid_momentum[node] += w * mv; });
     }
   }
   return finite;
@@ -166,7 +150,7 @@ __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2
 
 std::vector<LaneVariant<G2PRows3Function>> g2p_rows3_variants() {
   // No AVX2 or SSE2 rows: those machines run the scalar reference.
-  return lane_variants<G2PRows3Function>(g2p_rows3_scalar, g2p_rows3_scalar, g2p_rows3_avx512);
+  return lane_variants<G2PRows3Function>(g2p_rows_scalar<3>, g2p_rows_scalar<3>, g2p_rows3_avx512);
 }
 
 bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin, Index k_end) {
@@ -176,7 +160,7 @@ bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin
 
 std::vector<LaneVariant<G2PRowsFunction>> g2p_rows_variants() {
   // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
-  return lane_variants<G2PRowsFunction>(g2p_rows_scalar, g2p_rows_scalar, g2p_rows_avx512);
+  return lane_variants<G2PRowsFunction>(g2p_rows_scalar<2>, g2p_rows_scalar<2>, g2p_rows_avx512);
 }
 
 bool g2p_rows(const G2PArrays2& arrays, G2PParameters parameters, Index k_begin, Index k_end) {

@@ -13,7 +13,10 @@ namespace {
 // adding ±0 to a sum that starts at +0 leaves its bits as they are (a sum of such
 // terms is never −0): skipping it is exact. In a hybrid run only the transition
 // particles carry one (the coupling force), a few per cent of the grid's particles.
-bool carries_external_force(const Vec<2>& fe) { return fe[0] != 0.0 || fe[1] != 0.0; }
+template <int D>
+bool carries_external_force(const Vec<D>& fe) {
+  return !fe.isZero(0.0);
+}
 
 void prefetch_scattered(const ScatterSource2& s, ScatterFields what, Index p) {
   __builtin_prefetch(s.mass + p);
@@ -24,18 +27,26 @@ void prefetch_scattered(const ScatterSource2& s, ScatterFields what, Index p) {
   }
 }
 
-void scatter_rows_scalar(const ScatterSource2& s, const ScatterTarget2& g, ScatterFields what, Index k_begin,
-                         Index k_end) {
-  const IVec<2> stride(1, g.row_stride);
+IVec<2> node_stride(const ScatterTarget2& g) { return IVec<2>(1, g.row_stride); }
+IVec<3> node_stride(const ScatterTarget3& g) { return g.stride; }
+// The particle's stress: 2D keeps its in-plane τ in schedule order, 3D reads the particle's.
+const Mat<2>& tau_of(const ScatterSource2& s, Index k, Index) { return s.tau[k]; }
+const Mat<3>& tau_of(const ScatterSource3& s, Index, Index p) { return s.tau[p]; }
+
+// The reference, 2D and 3D: Simulation's generic scatter with 3 nodes per axis.
+template <int D, class Source, class Target>
+void scatter_rows_scalar(const Source& s, const Target& g, ScatterFields what, Index k_begin, Index k_end) {
+  const IVec<D> stride = node_stride(g);
   for (Index k = k_begin; k < k_end; ++k) {
-    if (k + kPrefetchAhead < k_end) prefetch_scattered(s, what, s.order[k + kPrefetchAhead]);
+    if constexpr (D == 2)
+      if (k + kPrefetchAhead < k_end) prefetch_scattered(s, what, s.order[k + kPrefetchAhead]);
     const Index p = s.order[k];
     const double m = s.mass[p];
-    const Vec<2> mv = m * s.velocity[p];
-    const Mat<2> Vtau = s.volume[p] * s.tau[k];
-    const Vec<2> fe = s.external[p];
+    const Vec<D> mv = m * s.velocity[p];
+    const Mat<D> Vtau = s.volume[p] * tau_of(s, k, p);
+    const Vec<D> fe = s.external[p];
     const bool external = what.external && carries_external_force(fe);
-    for_each_grid_node<2, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<2>& grad) {
+    for_each_grid_node<D, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<D>& grad) {
       if (what.mass) g.mass[node] += w * m;
       if (what.momentum) g.momentum[node] += w * mv;
       if (what.forces) {
@@ -64,7 +75,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
     const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
     const __m512d dwx2 = _mm512_set_pd(0.0, 0.0, dx[2], dx[2], dx[1], dx[1], dx[0], dx[0]);
     __m512d va = _mm512_setzero_pd(), vb = va, fe = va;
-    const bool external = what.forces && what.external && carries_external_force(s.external[p]);
+    const bool external = what.forces && what.external && carries_external_force<2>(s.external[p]);
     if (what.forces) {
       const double vol = s.volume[p];
       const Mat<2>& tau = s.tau[k];
@@ -103,27 +114,6 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
   }
 }
 
-// The reference: Simulation's generic scatter for D = 3, K = 3.
-void scatter_rows3_scalar(const ScatterSource3& s, const ScatterTarget3& g, ScatterFields what, Index k_begin,
-                          Index k_end) {
-  for (Index k = k_begin; k < k_end; ++k) {
-    const Index p = s.order[k];
-    const double m = s.mass[p];
-    const Vec<3> mv = m * s.velocity[p];
-    const Mat<3> Vtau = s.volume[p] * s.tau[p];
-    const Vec<3> fe = s.external[p];
-    const bool external = what.external && !fe.isZero(0.0);
-    for_each_grid_node<3, 3>(s.stencil[k], g.stride, [&](Index node, double w, const Vec<3>& grad) {
-      if (what.mass) g.mass[node] += w * m;
-      if (what.momentum) g.momentum[node] += w * mv;
-      if (what.forces) {
-        g.force_internal[node] -= Vtau * grad;
-        if (external) g.force_external[node] += w * fe;
-      }
-    });
-  }
-}
-
 // A row's nine doubles: lanes 0–7 and the ninth apart (stencil_row.hpp).
 __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource3& s, const ScatterTarget3& g,
                                                              ScatterFields what, Index k_begin, Index k_end) {
@@ -142,7 +132,7 @@ __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource
     if (what.forces) {
       Vtau = s.volume[p] * s.tau[p];
       fe = s.external[p];
-      external = what.external && !fe.isZero(0.0);
+      external = what.external && carries_external_force(fe);
     }
     const __m512d va = row_lanes(Vtau.col(0)), vb = row_lanes(Vtau.col(1)), vc = row_lanes(Vtau.col(2));
     const __m512d fe8 = row_lanes(fe);
@@ -186,7 +176,7 @@ __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource
 
 std::vector<LaneVariant<ScatterRows3Function>> scatter_rows3_variants() {
   // No AVX2 or SSE2 rows: those machines run the scalar reference.
-  return lane_variants<ScatterRows3Function>(scatter_rows3_scalar, scatter_rows3_scalar, scatter_rows3_avx512);
+  return lane_variants<ScatterRows3Function>(scatter_rows_scalar<3>, scatter_rows_scalar<3>, scatter_rows3_avx512);
 }
 
 void scatter_rows3(const ScatterSource3& source, const ScatterTarget3& grid, ScatterFields what, Index k_begin,
@@ -197,7 +187,7 @@ void scatter_rows3(const ScatterSource3& source, const ScatterTarget3& grid, Sca
 
 std::vector<LaneVariant<ScatterRowsFunction>> scatter_rows_variants() {
   // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
-  return lane_variants<ScatterRowsFunction>(scatter_rows_scalar, scatter_rows_scalar, scatter_rows_avx512);
+  return lane_variants<ScatterRowsFunction>(scatter_rows_scalar<2>, scatter_rows_scalar<2>, scatter_rows_avx512);
 }
 
 void scatter_rows(const ScatterSource2& source, const ScatterTarget2& grid, ScatterFields what, Index k_begin,
