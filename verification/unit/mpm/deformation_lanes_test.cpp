@@ -94,7 +94,6 @@ TEST(DeformationLanes, VelocityGradient3dIsTheNodeByNodeSumBitForBit) {
   for (int i = 0; i < nodes * nodes * nodes; ++i) vg.emplace_back(u(rng), u(rng), u(rng));
   const IVec<3> stride(1, nodes, nodes * nodes);
   const auto variants = velocity_gradient_rows3_variants();
-  int compared = 0;
   for (int t = 0; t < 300; ++t) {
     const Vec<3> x(inside(rng), inside(rng), inside(rng));
     const Stencil<3> st = make_stencil<3>(ShapeFunction::gimp, x, 1.0, Vec<3>::Constant(0.25));
@@ -103,10 +102,8 @@ TEST(DeformationLanes, VelocityGradient3dIsTheNodeByNodeSumBitForBit) {
     for (const auto& v : variants) {
       const Mat<3> L = v.function(st, vg.data(), stride);
       for (int e = 0; e < 9; ++e) EXPECT_TRUE(test::same_bits(L(e), reference(e))) << v.name << ", entry " << e;
-      ++compared;
     }
   }
-  EXPECT_EQ(compared, 300 * static_cast<int>(variants.size()));
 }
 
 }  // namespace
