@@ -5,11 +5,28 @@
 // block, ascending particle index). Blocks get one of 2^D colours by the parity
 // of their block coordinates. A particle in cell c writes only to nodes c−1 … c+2
 // per axis, so two blocks of the same colour (≥ 4 cells apart on some axis) never
-// write to the same node. Colours run one after another; the blocks of a colour
-// run in parallel, each by one thread in particle order. Every node therefore sums
-// its contributions in the same order whatever the number of threads, and the
-// result is bit-identical for any OpenMP team size, without atomics.
-#include <array>
+// write to the same node, and a node receives from at most one block of each
+// colour (a 2^D neighbourhood of blocks). Every node sums its blocks in ascending
+// colour and each block's particles in index order — whatever the number of
+// threads, so the result is bit-identical for any OpenMP team size, without atomics.
+//
+// The blocks run in phases, one after another; a phase is blocks of one colour,
+// run in parallel. On several threads the phases are the colours, each a sweep
+// over the whole grid. On one thread that sweep brought every node into cache 2^D
+// times, and on a grid larger than the L2 cache P2G and MUSL's remap cost half as
+// much again (a 400 × 400 plate against a 200 × 200 one); there the phases go
+// instead through the grid in slabs of two block layers along the last axis:
+// stage s takes the even layer 2s in the colours whose last-axis parity is even,
+// then the odd layer 2s − 1 in the others. A node between an even layer and the odd
+// one below it gets the even layer's blocks first in the same stage, one between an
+// even layer and the odd one above it a stage earlier: either way its colours
+// arrive in ascending order, as in the colour sweep, so the sums are the sweep's to
+// the bit while the grid passes through the cache once. (Slabs on two threads put a
+// barrier after every few dozen blocks, and on this project's machines that cost
+// more than the cache saved.)
+#include <omp.h>
+
+#include <algorithm>
 #include <vector>
 
 #include "solver/core/types.hpp"
@@ -59,17 +76,8 @@ class ScatterSchedule {
     std::vector<Index>& fill = fill_;
     fill.assign(start_.begin(), start_.end() - 1);
     for (std::size_t k = 0; k < particles.size(); ++k) order_[fill[block[k]]++] = particles[k];
-    for (auto& c : colour_blocks_) c.clear();
-    for (Index b = 0; b < nb; ++b) {
-      if (start_[b + 1] == start_[b]) continue;
-      int colour = 0;
-      Index rest = b;
-      for (int a = 0; a < D; ++a) {
-        colour |= ((rest % nblocks_[a]) & 1) << a;
-        rest /= nblocks_[a];
-      }
-      colour_blocks_[colour].push_back(b);
-    }
+    slabs_ = stages_of(1);
+    colour_sweep_ = stages_of(nblocks_[D - 1] / 2 + 1);  // one stage: colour by colour
   }
 
   // The particles in schedule order (block by block); per-step particle data such as
@@ -89,29 +97,70 @@ class ScatterSchedule {
   // fn(k_begin, k_end) for every block's run of positions in order(), scheduled so.
   template <class Fn>
   void for_each_block(Fn&& fn) const {
-    const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin;
-    for (int c = 0; c < kColours; ++c) {
-      const std::vector<Index>& blocks = colour_blocks_[c];
-      const Index nblk = static_cast<Index>(blocks.size());
+    const bool parallel = static_cast<Index>(order_.size()) >= kParallelMin && omp_get_max_threads() > 1;
+    const Phases& phases = parallel ? colour_sweep_ : slabs_;
+    const Index nphases = static_cast<Index>(phases.start.size()) - 1;
+#pragma omp parallel if (parallel)
+    for (Index ph = 0; ph < nphases; ++ph) {
 // Static chunks: a thread takes a run of neighbouring blocks, so two threads write
 // nodes on one cache line only where their runs meet (with blocks dealt out one by
 // one, same-colour neighbours 2 nodes apart shared lines on every block: 2 threads
-// ran the scatter slower than 1).
-#pragma omp parallel for schedule(static) if (parallel)
-      for (Index bi = 0; bi < nblk; ++bi) {
-        const Index b = blocks[bi];
+// ran the scatter slower than 1). The loop's barrier ends the phase.
+#pragma omp for schedule(static)
+      for (Index bi = phases.start[ph]; bi < phases.start[ph + 1]; ++bi) {
+        const Index b = phases.blocks[bi];
         fn(start_[b], start_[b + 1]);
       }
     }
   }
 
+  // Phases of one thread (slabs) or of several (the colours): phase ph is the blocks
+  // blocks[start[ph] … start[ph + 1]) (block indices).
+  struct Phases {
+    std::vector<Index> start, blocks;
+  };
+  const Phases& phases(bool parallel) const { return parallel ? colour_sweep_ : slabs_; }
+
  private:
+  // The phases whose stages take `layers_per_stage` even layers along the last axis in
+  // the colours of even last-axis parity, then as many odd layers, one behind, in the
+  // others (see the top of this file); the blocks of a phase in index order.
+  Phases stages_of(Index layers_per_stage) const {
+    const int top = D - 1;
+    Index per_layer = 1;  // blocks in one layer along the last axis
+    for (int a = 0; a < top; ++a) per_layer *= nblocks_[a];
+    const Index layers = nblocks_[top], span = 2 * layers_per_stage;
+    Phases p;
+    p.start.assign(1, 0);
+    for (Index first = 0; first < layers + 1; first += span)
+      for (int colour = 0; colour < kColours; ++colour) {
+        const Index parity = colour >> top & 1, lo = first - parity;  // odd layers trail by one
+        for (Index layer = std::max<Index>(lo, 0); layer < std::min(lo + span, layers); ++layer) {
+          if ((layer & 1) != parity) continue;
+          for (Index b = layer * per_layer; b < (layer + 1) * per_layer; ++b)
+            if (start_[b + 1] > start_[b] && colour_of(b) == colour) p.blocks.push_back(b);
+        }
+        if (static_cast<Index>(p.blocks.size()) > p.start.back())
+          p.start.push_back(static_cast<Index>(p.blocks.size()));
+      }
+    return p;
+  }
+
+  int colour_of(Index b) const {
+    int colour = 0;
+    for (int a = 0; a < D; ++a) {
+      colour |= static_cast<int>((b % nblocks_[a]) & 1) << a;
+      b /= nblocks_[a];
+    }
+    return colour;
+  }
+
   IVec<D> nblocks_ = IVec<D>::Ones();
   std::uint64_t generation_ = 0;
   std::vector<Index> start_, order_;
   std::vector<Index> particles_, block_;  // of the last build: the particles and their blocks
   std::vector<Index> fill_;               // scratch of build()
-  std::array<std::vector<Index>, kColours> colour_blocks_;
+  Phases slabs_, colour_sweep_;
 };
 
 }  // namespace pdmpm::mpm

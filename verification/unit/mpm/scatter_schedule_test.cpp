@@ -1,9 +1,13 @@
 // The scatter schedule: particles grouped by block of 4^D cells in ascending index,
-// same-colour blocks far enough apart that their stencils never share a node, and a
-// schedule kept from the last build exactly when a fresh build would give the same.
+// same-colour blocks far enough apart that their stencils never share a node, every
+// node summing its particles in the order of a colour-by-colour sweep (so the slab
+// order of the phases changes no bit), and a schedule kept from the last build
+// exactly when a fresh build would give the same.
 #include "solver/mpm/scatter_schedule.hpp"
 
 #include <gtest/gtest.h>
+
+#include <omp.h>
 
 #include <map>
 #include <random>
@@ -35,7 +39,7 @@ TEST(MpmScatterSchedule, GroupsByBlockInIndexOrderAndColoursKeepStencilsApart) {
   s.build(b.grid, b.particles, b.cell);
   std::map<Index, IVec<2>> cell_of;
   for (std::size_t k = 0; k < b.particles.size(); ++k) cell_of[b.particles[k]] = b.cell[k];
-  // Visit order: every particle once; within a block ascending; one colour after another.
+  // Visit order: every particle once; within a block ascending.
   std::vector<std::pair<Index, Index>> visits;  // (k, particle)
   s.for_each([&](Index k, Index p) {
 #pragma omp critical
@@ -62,6 +66,95 @@ TEST(MpmScatterSchedule, GroupsByBlockInIndexOrderAndColoursKeepStencilsApart) {
       const IVec<2> d = (cell_of[p] - cell_of[q]).cwiseAbs();
       EXPECT_TRUE(d[0] >= 4 || d[1] >= 4) << p << " and " << q;
     }
+}
+
+// Cells of n particles scattered uniformly over a grid of `cells` cells.
+template <int D>
+struct RandomBody {
+  Grid<D> grid;
+  std::vector<Index> particles;
+  std::vector<IVec<D>> cell;
+  RandomBody(const IVec<D>& cells, int n) : grid{Vec<D>::Zero(), 1.0, IVec<D>(cells.array() + 1)} {
+    std::mt19937 rng(11);
+    for (int p = 0; p < n; ++p) {
+      particles.push_back(2 * p + 1);  // not 0..n-1: the schedule carries store indices
+      IVec<D> c;
+      for (int a = 0; a < D; ++a) c[a] = std::uniform_int_distribution<int>(0, cells[a] - 1)(rng);
+      cell.push_back(c);
+    }
+  }
+};
+
+// node → the particles that write it (nodes c − 1 … c + 2 of cell c per axis), in the
+// order given by visit(fn), which calls fn(particle) for every particle in its order.
+template <int D, class Visit>
+std::map<Index, std::vector<Index>> node_sums(const RandomBody<D>& b, Visit&& visit) {
+  std::map<Index, std::vector<Index>> sums;  // by the node's linear index (coordinates shifted by 1)
+  visit([&](Index p) {
+    const IVec<D>& c = b.cell[static_cast<std::size_t>((p - 1) / 2)];
+    for (int n = 0; n < (1 << (2 * D)); ++n) {
+      Index node = 0, stride = 1;
+      for (int a = 0; a < D; ++a) {
+        node += (c[a] + ((n >> (2 * a)) & 3)) * stride;  // c − 1 + offset, shifted by 1
+        stride *= b.grid.n[a] + 2;
+      }
+#pragma omp critical
+      sums[node].push_back(p);
+    }
+  });
+  return sums;
+}
+
+template <int D>
+void expect_node_order_of_a_colour_sweep(const IVec<D>& cells, int n) {
+  const RandomBody<D> b(cells, n);
+  ScatterSchedule<D> s;
+  s.build(b.grid, b.particles, b.cell);
+  // The reference: colour by colour, each colour's blocks in index order.
+  IVec<D> nblocks;
+  for (int a = 0; a < D; ++a) nblocks[a] = (cells[a] + 3) / 4;
+  const auto sweep = node_sums<D>(b, [&](auto&& fn) {
+    for (int colour = 0; colour < (1 << D); ++colour)
+      for (std::size_t k = 0; k < s.order().size(); ++k) {
+        const Index p = s.order()[k];
+        const IVec<D>& c = b.cell[static_cast<std::size_t>((p - 1) / 2)];  // particles are 2k + 1
+        int cc = 0;
+        for (int a = 0; a < D; ++a) cc |= ((c[a] / 4) & 1) << a;
+        if (cc == colour) fn(p);
+      }
+  });
+  // One thread goes through slabs in several stages, more threads colour by colour;
+  // every phase is blocks of one colour.
+  const auto& slabs = s.phases(false);
+  const auto& sweep_phases = s.phases(true);
+  ASSERT_GT(slabs.start.size() - 1, 2u << D) << "the grid should need several stages";
+  ASSERT_EQ(sweep_phases.start.size() - 1, 1u << D);
+  for (const auto* phases : {&slabs, &sweep_phases})
+    for (std::size_t ph = 0; ph + 1 < phases->start.size(); ++ph) {
+      std::set<int> colours;
+      for (Index i = phases->start[ph]; i < phases->start[ph + 1]; ++i) {
+        int cc = 0;
+        Index rest = phases->blocks[static_cast<std::size_t>(i)];
+        for (int a = 0; a < D; ++a) cc |= static_cast<int>((rest % nblocks[a]) & 1) << a, rest /= nblocks[a];
+        colours.insert(cc);
+      }
+      EXPECT_EQ(colours.size(), 1u) << "phase " << ph;
+    }
+  const int threads_before = omp_get_max_threads();
+  for (int threads : {1, 2, 3}) {
+    omp_set_num_threads(threads);
+    const auto phased = node_sums<D>(b, [&](auto&& fn) { s.for_each([&](Index, Index p) { fn(p); }); });
+    EXPECT_EQ(phased, sweep) << threads << " threads";
+  }
+  omp_set_num_threads(threads_before);
+}
+
+TEST(MpmScatterSchedule, EveryNodeSumsInTheOrderOfAColourSweep) {
+  // Several stages in each dimension; more than kParallelMin particles, so the phases
+  // run in parallel on more than one thread.
+  expect_node_order_of_a_colour_sweep<1>(IVec<1>(600), 5000);
+  expect_node_order_of_a_colour_sweep<2>(IVec<2>(80, 200), 5000);
+  expect_node_order_of_a_colour_sweep<3>(IVec<3>(40, 40, 48), 5000);
 }
 
 TEST(MpmScatterSchedule, KeptScheduleEqualsAFreshBuild) {
