@@ -337,7 +337,7 @@ RunResult HybridRun<D>::run() {
   for (std::int64_t step = steps_done_ + 1; step <= total_steps_; ++step) {
     const bool last = step == total_steps_;
     const bool with_energy = step % energy_every_ == 0 || rec_.history_due(step) || last;
-    this->step(with_energy);
+    if (!rec_.step_or_stop([&] { this->step(with_energy); })) break;
     steps_done_ = step;
     const double t = h_.time();
     if (with_energy && !stable(step, t)) {

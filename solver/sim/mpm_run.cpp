@@ -239,7 +239,7 @@ RunResult MpmRun<D>::run() {
   if (rec_.resuming()) rec_.restore();
   for (std::int64_t step = rec_.resuming() ? steps_done_ + 1 : 0; step <= total_steps_; ++step) {
     if (step > 0) {
-      sim_.step(dt_);
+      if (!rec_.step_or_stop([&] { sim_.step(dt_); })) break;
       steps_done_ = step;
       failed_ += static_cast<std::int64_t>(sim_.newly_failed().size());
     }

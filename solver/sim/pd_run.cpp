@@ -293,7 +293,7 @@ void PdRun<D>::verlet() {
   }
   for (std::int64_t step = steps_done_ + 1; step <= total_steps_; ++step) {
     const bool with_energy = step % energy_every_ == 0 || rec_.history_due(step);
-    stepper.step(with_energy);
+    if (!rec_.step_or_stop([&] { stepper.step(with_energy); })) return;
     const double t = stepper.time();
     steps_done_ = step;
     external_work_ = stepper.external_work();
@@ -326,7 +326,7 @@ void PdRun<D>::adr() {
   maybe_frame(0, 0.0);
   for (std::int64_t load = 1; load <= total_steps_; ++load) {
     const double t = static_cast<double>(load) / static_cast<double>(total_steps_);
-    relax_ = relax.solve(t, scene_.time.tolerance, scene_.time.max_steps);
+    if (!rec_.step_or_stop([&] { relax_ = relax.solve(t, scene_.time.tolerance, scene_.time.max_steps); })) return;
     internal_energy_ = simulation_.internal_energy();
     steps_done_ = load;
     history_row(load, t);

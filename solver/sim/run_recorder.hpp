@@ -18,6 +18,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "solver/core/error.hpp"
 #include "solver/io/fields_writer.hpp"
 #include "solver/io/history_writer.hpp"
 #include "solver/io/output_directory.hpp"
@@ -71,8 +72,22 @@ class RunRecorder {
     if (progress_) progress_->update(step, t, count);
   }
 
-  // The run stops early: "unstable" or "not_converged", with the message for the user.
+  // The run stops early: "unstable", "not_converged" or "failed", with the message for the user.
   void stop(std::string status, std::string message);
+  // Advances the method by one step (step()). A RunError the step throws — a particle
+  // left the MPM grid, an element inverted — stops the run as "failed" with its message,
+  // and the outputs up to the last completed step are kept like an unstable run's:
+  // false then.
+  template <class Step>
+  bool step_or_stop(Step&& step) {
+    try {
+      step();
+      return true;
+    } catch (const RunError& e) {
+      stop("failed", e.what());
+      return false;
+    }
+  }
   const std::string& status() const { return status_; }
   const std::string& message() const { return message_; }
 

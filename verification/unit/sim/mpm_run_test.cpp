@@ -279,6 +279,28 @@ TEST(MpmRun, UniformInitialVelocityMovesAFreeBodyRigidly) {
   RecordProperty("worst_energy", fmt::format("{:.3e}", worst_energy));
 }
 
+// A step that fails (here the body, thrown at 2 km/s, leaves its grid after some twenty
+// steps) ends the run as "failed" with exit status 3 and keeps the outputs up to the last
+// completed step, as an unstable run does; until 2026-11-28 the outputs were discarded,
+// and a paper-resolution central crack lost 16 minutes of history that way.
+TEST(MpmRun, AFailedStepKeepsTheOutputsUpToTheLastCompletedStep) {
+  const test::ScratchDir scratch("mpm_run_failed_step");
+  const auto out = scratch.fresh("run");
+  const auto r = run(free_mpm_plate("[[initial]]\nvelocity = [2000.0, 0.0]\n"), out);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_EQ(r.summary["status"], "failed");
+  EXPECT_NE(r.message.find("has left the grid"), std::string::npos) << r.message;
+  const auto steps = r.summary["steps"].get<std::int64_t>();
+  EXPECT_GT(steps, 0);
+  EXPECT_LT(steps, 100);
+  ASSERT_TRUE(fs::exists(out / "summary.json"));
+  std::ifstream summary_file(out / "summary.json");
+  EXPECT_EQ(nlohmann::json::parse(summary_file)["status"], "failed");
+  const auto rows = test::history_rows(out / "history.csv");  // history_every = 1
+  ASSERT_EQ(rows.size(), static_cast<std::size_t>(steps) + 1);
+  EXPECT_EQ(rows.back().at("step"), static_cast<double>(steps));
+}
+
 // u = H X: F = I + H at every particle (the central difference of a linear field is exact
 // to rounding), so the stress the run writes at t = 0 is Hooke's law of ε = sym(H) and the
 // stored energy ½ ε:σ V.
