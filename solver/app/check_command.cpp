@@ -93,13 +93,17 @@ int check_command(const CheckArgs& args) {
     const sim::StepPlan plan = sim::plan_steps(scene.time, s.value("dt", 0.0));
     fmt::print("  time        dt = {:.4g} s, {} steps to t = {:.4g} s\n", plan.dt, plan.steps, plan.end_time);
     if (!calibrate || plan.steps <= n1) return 0;
-    // Second trial: about calibration_seconds of steps more; the difference is the
-    // cost of a step without the building and the run's start.
+    // Second trial: about calibration_seconds of steps more; the difference of the two
+    // runs' own wall times (the stepping loop and its start, the same in both) is the
+    // cost of a step. The difference of the calls' times also holds building the body
+    // twice, whose spread on a large body exceeded the steps' time: a 160 000-particle
+    // plate got 0 s per step and an estimate of 2 s for an 80-minute run.
     const double rough = std::max(first.summary.value("wall_time_s", 0.0) / static_cast<double>(n1), 1e-9);
     const std::int64_t more =
         std::clamp<std::int64_t>(static_cast<std::int64_t>(args.calibration_seconds / rough), n1, plan.steps - n1);
     const Trial second = trial_run(scene, n1 + more, args.threads, scratch.path / "second");
-    const double per_step = std::max(0.0, (second.seconds - first.seconds) / static_cast<double>(more));
+    const double per_step = std::max(
+        0.0, (second.summary.value("wall_time_s", 0.0) - s.value("wall_time_s", 0.0)) / static_cast<double>(more));
     const double fixed = std::max(0.0, first.seconds - per_step * static_cast<double>(n1));
     const int threads = s.value("threads", 0);
     fmt::print("  cost        {} per step on {} thread{} (timed over {} steps), {} to build and start\n",
