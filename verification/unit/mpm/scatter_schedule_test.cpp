@@ -110,17 +110,18 @@ void expect_node_order_of_a_colour_sweep(const IVec<D>& cells, int n) {
   const RandomBody<D> b(cells, n);
   ScatterSchedule<D> s;
   s.build(b.grid, b.particles, b.cell);
+  // A block's colour from its block coordinates: their parities.
+  auto colour_of = [](const IVec<D>& block) {
+    int colour = 0;
+    for (int a = 0; a < D; ++a) colour |= (block[a] & 1) << a;
+    return colour;
+  };
   // The reference: colour by colour, each colour's blocks in index order.
-  IVec<D> nblocks;
-  for (int a = 0; a < D; ++a) nblocks[a] = (cells[a] + 3) / 4;
   const auto sweep = node_sums<D>(b, [&](auto&& fn) {
     for (int colour = 0; colour < (1 << D); ++colour)
-      for (std::size_t k = 0; k < s.order().size(); ++k) {
-        const Index p = s.order()[k];
+      for (const Index p : s.order()) {
         const IVec<D>& c = b.cell[static_cast<std::size_t>((p - 1) / 2)];  // particles are 2k + 1
-        int cc = 0;
-        for (int a = 0; a < D; ++a) cc |= ((c[a] / 4) & 1) << a;
-        if (cc == colour) fn(p);
+        if (colour_of(IVec<D>(c.array() / 4)) == colour) fn(p);
       }
   });
   // One thread goes through slabs in several stages, more threads colour by colour;
@@ -133,10 +134,11 @@ void expect_node_order_of_a_colour_sweep(const IVec<D>& cells, int n) {
     for (std::size_t ph = 0; ph + 1 < phases->start.size(); ++ph) {
       std::set<int> colours;
       for (Index i = phases->start[ph]; i < phases->start[ph + 1]; ++i) {
-        int cc = 0;
+        IVec<D> block;  // the block index's coordinates (4 cells per block and axis)
         Index rest = phases->blocks[static_cast<std::size_t>(i)];
-        for (int a = 0; a < D; ++a) cc |= static_cast<int>((rest % nblocks[a]) & 1) << a, rest /= nblocks[a];
-        colours.insert(cc);
+        for (int a = 0; a < D; ++a)
+          block[a] = static_cast<int>(rest % ((cells[a] + 3) / 4)), rest /= (cells[a] + 3) / 4;
+        colours.insert(colour_of(block));
       }
       EXPECT_EQ(colours.size(), 1u) << "phase " << ph;
     }
