@@ -86,6 +86,7 @@ struct Outcome {
   RunResult result;
   std::map<std::string, double> last;
   std::vector<double> method;  // last frame
+  std::vector<double> speed;   // last frame: |v| per particle
   Index particles = 0;
 };
 
@@ -104,6 +105,8 @@ Outcome run_plate(const std::string& hybrid_keys, const std::string& name) {
   const test::FieldsReader fields((out / "fields.h5").string());
   EXPECT_EQ(fields.frames().size(), 3u);
   o.method = fields.read(fields.frames().back(), "method");
+  const std::vector<double> v = fields.read(fields.frames().back(), "velocity");  // 3 per particle
+  for (std::size_t i = 0; i + 2 < v.size(); i += 3) o.speed.push_back(std::hypot(v[i], v[i + 1], v[i + 2]));
   EXPECT_EQ(fields.read(fields.frames().back(), "von_mises").size(), o.method.size());
   EXPECT_EQ(fields.read(fields.frames().back(), "damage").size(), o.method.size());
   o.particles = static_cast<Index>(o.method.size());
@@ -147,6 +150,7 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
                           "momentum_x",
                           "momentum_y",
                           "max_damage",
+                          "max_speed",
                           "probe_mid_uy",
                           "probe_mid_vx",
                           "conversion_energy",
@@ -168,6 +172,15 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
     pd_field += m == 0.0;
   }
   EXPECT_EQ(pd_field, pd);
+  // max_speed is the fastest particle not removed (kind 3), the same step as the last frame;
+  // both files hold every digit, so equal to within the rounding of |v| (4 ulp). The grips pull at 2 m/s, so it is at least near that.
+  ASSERT_EQ(o.speed.size(), o.method.size());
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < o.speed.size(); ++i)
+    if (o.method[i] != 3.0) fastest = std::max(fastest, o.speed[i]);
+  EXPECT_DOUBLE_EQ(o.last.at("max_speed"), fastest);
+  EXPECT_DOUBLE_EQ(o.result.summary["metrics"]["max_speed"].get<double>(), fastest);
+  EXPECT_GT(fastest, 1.0);
 }
 
 TEST(HybridRun, ModePdIsAllPeridynamics) {
