@@ -139,6 +139,14 @@ constexpr std::array<EnumName<Isotropy>, 2> names(Isotropy) {
   return {{{Isotropy::corrected, "corrected"}, {Isotropy::lattice, "lattice"}}};
 }
 
+// model.damaged_yield (plastic models): where a particle with broken bonds reads its
+// equivalent stress — reference_family (default: the live bonds' norm over the reference
+// family's weighted volume, as LPS) or live_bonds (over the live bonds' weighted volume).
+enum class DamagedYield { reference_family, live_bonds };
+constexpr std::array<EnumName<DamagedYield>, 2> names(DamagedYield) {
+  return {{{DamagedYield::reference_family, "reference_family"}, {DamagedYield::live_bonds, "live_bonds"}}};
+}
+
 struct TimeSpec {
   Integrator integrator = Integrator::verlet;
   std::optional<double> end_time;
@@ -200,6 +208,7 @@ struct Scene {
   bool break_after_force = false;          // model.break_timing = "after_force" (LAMMPS' rule)
   bool continuum_weighted_volume = false;  // model.weighted_volume = "continuum" (lps)
   bool isotropic_deviatoric = false;       // model.isotropy = "corrected" (plastic PD models)
+  bool yield_on_live_bonds = false;        // model.damaged_yield = "live_bonds" (plastic PD models)
   pd::HpdOptions hpd;                      // material.constitutive, model.overlap_min_points (hpd)
   ContactSpec contact;
   std::optional<MpmSpec> mpm;              // set when model = "mpm", and for a hybrid scene

@@ -67,6 +67,10 @@ void read_pd_model(const TomlReader& m, Scene& s) {
   } else {
     s.isotropic_deviatoric = pd::model_info(s.model).plastic;
   }
+  if (auto dy = m.optional_enum<DamagedYield>("damaged_yield")) {
+    if (!pd::model_info(s.model).plastic) m.fail("damaged_yield", "only for the plastic models (type = \"lps_plastic\")");
+    s.yield_on_live_bonds = *dy == DamagedYield::live_bonds;
+  }
   if (s.model == "hpd") {
     if (auto law = m.optional_enum<pd::HpdLaw>("constitutive")) s.hpd.law = *law;
     if (auto k = m.optional_integer("overlap_min_points")) {

@@ -127,19 +127,25 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
   const double ep_n = eq_plastic_.committed[i];
   const double radius =
       hardening_ ? hardening_->yield_stress + plastic_modulus_ * ep_n : std::numeric_limits<double>::infinity();
-  double r = 1.0, dep = 0.0, sigma = 0.0;
+  const double live = sys.yield_on_live_bonds ? live_bond_ratio(sys, i) : 1.0;
+  // sigma: σ̄ after the return as the yield reads it; on_family: the same over the reference
+  // family (they differ only for a damaged particle with damaged_yield = "live_bonds").
+  double r = 1.0, dep = 0.0, sigma = 0.0, on_family = 0.0;
   if constexpr (D == 2) {
     double x = 0.0;  // the elastic deviator after the return is the trial one over 1 + x
-    sigma = planar_return(i, norm2, radius, x);
+    sigma = planar_return(i, norm2, radius, live, x, on_family);
     r = 1.0 / (1.0 + x);
     dep = x * sigma / three_g_;
   } else {
-    const double trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);  // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²)
+    // σ̄ = (B/m_d) √(m_d/ζ · Σ ωβcV ε²), read on the live bonds (× √(m_d/m_d,live)) if asked
+    const double family_trial = k_.B * std::sqrt(inv_md_[i] / zeta_ * norm2);
+    const double trial = std::sqrt(live) * family_trial;
     if (trial > radius) {
       dep = (trial - radius) / (three_g_ + plastic_modulus_);
       r = 1.0 - three_g_ * dep / trial;
     }
     sigma = r * trial;
+    on_family = r * family_trial;
     mean_term_[i] = k_.d * k_.kappa * theta_[i];  // 3Kθ (bar: κ = 0)
     volumetric_energy_[i] = 0.5 * k_.kappa * theta_[i] * theta_[i];
   }
@@ -149,7 +155,9 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
   particle_rows_[4 * i + 2] = k_.gamma * theta_c_[i];
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
-  dissipation_[i] = p.volume[i] * sigma_eq_[i] * dep;
+  // The work the return dissipates, Σ t Δp βV: σ̄ Δε̄_p, or σ̄_family² Δε̄_p/σ̄ when the yield
+  // reads the live bonds (the forces stay the reference family's).
+  dissipation_[i] = p.volume[i] * (live == 1.0 ? sigma_eq_[i] * dep : (sigma > 0.0 ? on_family * on_family * dep / sigma : 0.0));
   // p ← p + (1 − r) ε on every bond of the state; broken and inactive bonds keep theirs. A particle
   // that does not flow keeps p_n, copied back only if an earlier trial changed it.
   if (r == 1.0 && !trial_flowed_[i]) return;
@@ -167,11 +175,29 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
 // F(x) = σ̄(x)(1 − Hx/3G) − Y = 0 by Newton from x = 0 (F convex and decreasing, so the
 // iterates rise monotonically to the root). Writes q_p, q_e, ε_zz and the mean term;
 // returns σ̄ after the return.
+// m_d/m_d,live of particle i: the reference family's deviatoric weighted volume over its
+// state bonds' (1 for a particle with every bond; 1 when none is left, no force either).
 template <int D>
-double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double& x) {
+double LpsPlastic<D>::live_bond_ratio(const System<D>& sys, Index i) const {
+  double live = 0.0;
+  bool intact = true;
+  sys.for_each_bond(i, BondSet::reference, [&](BondIndex b, Index j, int k) {
+    if (!sys.bonds.in_state(b)) {
+      intact = false;
+      return;
+    }
+    live += sys.table.weight[k] * shell_[k] * sys.table.length[k] * sys.table.length[k] * sys.particles.volume[j];
+  });
+  if (intact || !(live > 0.0) || !(inv_md_[i] > 0.0)) return 1.0;
+  return 1.0 / (inv_md_[i] * live);
+}
+
+template <int D>
+double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double live, double& x, double& on_family) {
   const double G = shear_, K = bulk_, theta = theta_[i];
   const bool plane_stress = setting_ == core::Setting::plane_stress;
-  const double dev2 = 4.0 * norm2 * inv_md_[i];  // ε₂ᵈ : ε₂ᵈ of the bonds
+  const double family_dev2 = 4.0 * norm2 * inv_md_[i];  // ε₂ᵈ : ε₂ᵈ of the bonds
+  const double dev2 = live * family_dev2;                  // as the yield reads it (live_bond_ratio)
   const double a = plane_stress ? 4.0 * G / (3.0 * K) : 0.0;
   const double Q = (plane_stress ? 0.5 : 1.0 / 6.0) * theta - axial_plastic_.committed[i];
   const double six_g2 = 6.0 * G * G;
@@ -183,8 +209,8 @@ double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double
   if (sigma > radius) {
     const double h = plastic_modulus_ / three_g_;
     if (a == 0.0) {  // radial: the 3D formula
-      const double dep = (sigma - radius) / (three_g_ + plastic_modulus_);
-      const double after = sigma - three_g_ * dep;
+      const double dep_radial = (sigma - radius) / (three_g_ + plastic_modulus_);
+      const double after = sigma - three_g_ * dep_radial;
       x = sigma / after - 1.0;
       sigma = after;
     } else {
@@ -199,6 +225,9 @@ double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double
       }
     }
   }
+  on_family = live == 1.0 ? sigma
+                          : std::sqrt(six_g2 * (family_dev2 / ((1.0 + x) * (1.0 + x)) +
+                                                6.0 * Q * Q / ((1.0 + x + a) * (1.0 + x + a))));
   const double qe = Q / (1.0 + x + a);
   axial_elastic_[i] = qe;
   axial_plastic_.trial[i] = axial_plastic_.committed[i] + x * qe;

@@ -146,7 +146,8 @@ class LpsPlastic final : public Model<D> {
 
   void return_map(const System<D>& sys, Index i, const double* eps);
   std::int64_t fail_particles(System<D>& sys);
-  double planar_return(Index i, double norm2, double radius, double& x);
+  double planar_return(Index i, double norm2, double radius, double live, double& x, double& on_family);
+  double live_bond_ratio(const System<D>& sys, Index i) const;
   void set_weighted_volumes(const System<D>& sys, Index i);
   static std::vector<double> isotropy_weights(const System<D>& sys);
   double scalar_force_state(Index i, BondIndex b, int k, double e, double L) const;

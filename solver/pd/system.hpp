@@ -43,6 +43,10 @@ struct System {
   // κ chosen so the full stencil's fourth bond moment is isotropic (docs/models/lps_plastic.md);
   // false: the plain lattice sums, whose deviatoric response is cubic.
   bool isotropic_deviatoric = false;
+  // Plastic LPS: a particle with broken bonds reads its equivalent stress over the live
+  // bonds' weighted volume (docs/models/lps_plastic.md, "Damaged particles"); false: over
+  // the reference family's, as LPS.
+  bool yield_on_live_bonds = false;
   // A hybrid's transition particles measure their state over their whole family (bonds
   // to grid particles state-only, pd/bond_state.hpp); false: over their active bonds.
   bool transition_full_state = false;

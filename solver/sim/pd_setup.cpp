@@ -67,6 +67,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
   }
   if (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2) sys.hardening = s.hardening;
   sys.isotropic_deviatoric = s.isotropic_deviatoric;
+  sys.yield_on_live_bonds = s.yield_on_live_bonds;
   sys.hpd = s.hpd;
 
   std::vector<bc::SymmetryPlane> planes;

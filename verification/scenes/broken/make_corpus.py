@@ -173,6 +173,8 @@ CASES = {
     "yield_for_elastic_pd": ("material.yield_stress | only for the plastic models", replace("critical_stretch = 0.002", "critical_stretch = 0.002\nyield_stress = 2e8")),
     "isotropy_for_elastic_pd": ("model.isotropy | only for the plastic models", replace('influence = "constant"', 'influence = "constant"\nisotropy = "lattice"')),
     "plastic_unknown_isotropy": ("model.isotropy | must be one of corrected, lattice", plastic('type = "lps_plastic"', 'type = "lps_plastic"\nisotropy = "cubic"')),
+    "damaged_yield_for_elastic_pd": ("model.damaged_yield | only for the plastic models", replace('influence = "constant"', 'influence = "constant"\ndamaged_yield = "live_bonds"')),
+    "plastic_unknown_damaged_yield": ("model.damaged_yield | must be one of reference_family, live_bonds", plastic('type = "lps_plastic"', 'type = "lps_plastic"\ndamaged_yield = "live"')),
     "hybrid_1d": ("discretization.dimension | the hybrid needs dimension = 2 or 3", hybrid('dimension = 2\nplane = "strain"', "dimension = 1").replace("thickness = 1e-3", "area = 1e-6")),
     "hybrid_missing_mpm": ("mpm | a hybrid scene needs the [mpm] table", hybrid("\n[mpm]\n", "")),
     "hybrid_mpm_model": ("model.type | needs the PD model in [model]", hybrid('type = "lps_plastic"', 'type = "mpm"')),
