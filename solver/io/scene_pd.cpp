@@ -68,7 +68,8 @@ void read_pd_model(const TomlReader& m, Scene& s) {
     s.isotropic_deviatoric = pd::model_info(s.model).plastic;
   }
   if (auto dy = m.optional_enum<DamagedYield>("damaged_yield")) {
-    if (!pd::model_info(s.model).plastic) m.fail("damaged_yield", "only for the plastic models (type = \"lps_plastic\")");
+    if (!pd::model_info(s.model).plastic)
+      m.fail("damaged_yield", "only for the plastic models (type = \"lps_plastic\")");
     s.yield_on_live_bonds = *dy == DamagedYield::live_bonds;
   }
   if (s.model == "hpd") {

@@ -80,9 +80,7 @@ void LpsPlastic<D>::refresh(const System<D>& sys, const std::vector<Index>& chan
 template <int D>
 void LpsPlastic<D>::set_weighted_volumes(const System<D>& sys, Index i) {
   double md = 0.0;
-  sys.for_each_bond(i, BondSet::reference, [&](BondIndex, Index j, int k) {
-    md += sys.table.weight[k] * shell_[k] * sys.table.length[k] * sys.table.length[k] * sys.particles.volume[j];
-  });
+  sys.for_each_bond(i, BondSet::reference, [&](BondIndex, Index j, int k) { md += deviatoric_moment(sys, j, k); });
   inv_m_[i] = m_[i] > 0.0 ? 1.0 / m_[i] : 0.0;  // a particle without bonds feels no force
   inv_md_[i] = md > 0.0 ? 1.0 / md : 0.0;
 }
@@ -157,7 +155,8 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
   eq_plastic_.trial[i] = ep_n + dep;
   // The work the return dissipates, Σ t Δp βV: σ̄ Δε̄_p, or σ̄_family² Δε̄_p/σ̄ when the yield
   // reads the live bonds (the forces stay the reference family's).
-  dissipation_[i] = p.volume[i] * (live == 1.0 ? sigma_eq_[i] * dep : (sigma > 0.0 ? on_family * on_family * dep / sigma : 0.0));
+  dissipation_[i] =
+      p.volume[i] * (live == 1.0 ? sigma_eq_[i] * dep : (sigma > 0.0 ? on_family * on_family * dep / sigma : 0.0));
   // p ← p + (1 − r) ε on every bond of the state; broken and inactive bonds keep theirs. A particle
   // that does not flow keeps p_n, copied back only if an earlier trial changed it.
   if (r == 1.0 && !trial_flowed_[i]) return;
@@ -169,12 +168,6 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
                                                                  : plastic_ext_.committed[b];
 }
 
-// The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,
-// and the particle's axial deviator q_e = Q/(1 + x + a) return together; plane strain
-// (a = 0) is radial, plane stress (a = 4G/3K, from σ_zz = 0) solves
-// F(x) = σ̄(x)(1 − Hx/3G) − Y = 0 by Newton from x = 0 (F convex and decreasing, so the
-// iterates rise monotonically to the root). Writes q_p, q_e, ε_zz and the mean term;
-// returns σ̄ after the return.
 // m_d/m_d,live of particle i: the reference family's deviatoric weighted volume over its
 // state bonds' (1 for a particle with every bond; 1 when none is left, no force either).
 template <int D>
@@ -186,18 +179,25 @@ double LpsPlastic<D>::live_bond_ratio(const System<D>& sys, Index i) const {
       intact = false;
       return;
     }
-    live += sys.table.weight[k] * shell_[k] * sys.table.length[k] * sys.table.length[k] * sys.particles.volume[j];
+    live += deviatoric_moment(sys, j, k);
   });
   if (intact || !(live > 0.0) || !(inv_md_[i] > 0.0)) return 1.0;
   return 1.0 / (inv_md_[i] * live);
 }
 
+// The 2D return (see the header): the in-plane deviator of the bonds, Σ ωβcV ε² = norm2,
+// and the particle's axial deviator q_e = Q/(1 + x + a) return together; plane strain
+// (a = 0) is radial, plane stress (a = 4G/3K, from σ_zz = 0) solves
+// F(x) = σ̄(x)(1 − Hx/3G) − Y = 0 by Newton from x = 0 (F convex and decreasing, so the
+// iterates rise monotonically to the root). Writes q_p, q_e, ε_zz and the mean term;
+// returns σ̄ after the return. `live` (live_bond_ratio) scales the bonds' term as the yield
+// reads it; on_family is σ̄ after the return read over the reference family.
 template <int D>
 double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double live, double& x, double& on_family) {
   const double G = shear_, K = bulk_, theta = theta_[i];
   const bool plane_stress = setting_ == core::Setting::plane_stress;
   const double family_dev2 = 4.0 * norm2 * inv_md_[i];  // ε₂ᵈ : ε₂ᵈ of the bonds
-  const double dev2 = live * family_dev2;                  // as the yield reads it (live_bond_ratio)
+  const double dev2 = live * family_dev2;               // as the yield reads it (live_bond_ratio)
   const double a = plane_stress ? 4.0 * G / (3.0 * K) : 0.0;
   const double Q = (plane_stress ? 0.5 : 1.0 / 6.0) * theta - axial_plastic_.committed[i];
   const double six_g2 = 6.0 * G * G;
@@ -209,8 +209,8 @@ double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double
   if (sigma > radius) {
     const double h = plastic_modulus_ / three_g_;
     if (a == 0.0) {  // radial: the 3D formula
-      const double dep_radial = (sigma - radius) / (three_g_ + plastic_modulus_);
-      const double after = sigma - three_g_ * dep_radial;
+      const double dep = (sigma - radius) / (three_g_ + plastic_modulus_);
+      const double after = sigma - three_g_ * dep;
       x = sigma / after - 1.0;
       sigma = after;
     } else {
@@ -225,9 +225,9 @@ double LpsPlastic<D>::planar_return(Index i, double norm2, double radius, double
       }
     }
   }
-  on_family = live == 1.0 ? sigma
-                          : std::sqrt(six_g2 * (family_dev2 / ((1.0 + x) * (1.0 + x)) +
-                                                6.0 * Q * Q / ((1.0 + x + a) * (1.0 + x + a))));
+  on_family = live == 1.0
+      ? sigma
+      : std::sqrt(six_g2 * (family_dev2 / ((1.0 + x) * (1.0 + x)) + 6.0 * Q * Q / ((1.0 + x + a) * (1.0 + x + a))));
   const double qe = Q / (1.0 + x + a);
   axial_elastic_[i] = qe;
   axial_plastic_.trial[i] = axial_plastic_.committed[i] + x * qe;

@@ -148,6 +148,10 @@ class LpsPlastic final : public Model<D> {
   std::int64_t fail_particles(System<D>& sys);
   double planar_return(Index i, double norm2, double radius, double live, double& x, double& on_family);
   double live_bond_ratio(const System<D>& sys, Index i) const;
+  // ωβc|ξ|²V_j of the bond to j at stencil offset k: its share of m_d.
+  double deviatoric_moment(const System<D>& sys, Index j, int k) const {
+    return sys.table.weight[k] * shell_[k] * sys.table.length[k] * sys.table.length[k] * sys.particles.volume[j];
+  }
   void set_weighted_volumes(const System<D>& sys, Index i);
   static std::vector<double> isotropy_weights(const System<D>& sys);
   double scalar_force_state(Index i, BondIndex b, int k, double e, double L) const;

@@ -81,11 +81,12 @@ void check(core::Setting s) {
   // intact centre's, and it has half of them, so it dissipates half (every other particle is
   // the same in both blocks). 1e-9: round-off of the half sums, as above.
   EXPECT_GT(intact_centre_work, 0.0);
-  EXPECT_NEAR((intact.model.plastic_work() - damaged.model.plastic_work()) / intact_centre_work, 0.5, 1e-9)
-      << name(s);
+  EXPECT_NEAR((intact.model.plastic_work() - damaged.model.plastic_work()) / intact_centre_work, 0.5, 1e-9) << name(s);
   // Read on the reference family, the damaged centre yields late: less flow at every step.
   for (std::size_t k = 0; k < ep_intact.size(); ++k)
-    if (ep_intact[k] > 0.0) EXPECT_LT(ep_late[k], ep_intact[k]) << name(s) << " step " << k;
+    if (ep_intact[k] > 0.0) {
+      EXPECT_LT(ep_late[k], ep_intact[k]) << name(s) << " step " << k;
+    }
 }
 
 TEST(LpsPlasticDamagedYield, LiveBondsFollowTheIntactLaw3d) { check<3>(core::Setting::solid3d); }

@@ -173,7 +173,8 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
   }
   EXPECT_EQ(pd_field, pd);
   // max_speed is the fastest particle not removed (kind 3), the same step as the last frame;
-  // both files hold every digit, so equal to within the rounding of |v| (4 ulp). The grips pull at 2 m/s, so it is at least near that.
+  // both files hold every digit, so equal to within the rounding of |v| (4 ulp). The grips
+  // pull at 2 m/s, so it is at least near that.
   ASSERT_EQ(o.speed.size(), o.method.size());
   double fastest = 0.0;
   for (std::size_t i = 0; i < o.speed.size(); ++i)
