@@ -1,4 +1,4 @@
-// The scatter schedule: particles grouped by block of 4^D cells in ascending index,
+// The scatter schedule: particles grouped by block of 32 × 4^(D−1) cells in ascending index,
 // same-colour blocks far enough apart that their stencils never share a node, every
 // node summing its particles in the order of a colour-by-colour sweep (so the slab
 // order of the phases changes no bit), and a schedule kept from the last build
@@ -31,7 +31,9 @@ struct Body {
   }
 };
 
-IVec<2> block_of(const IVec<2>& c) { return IVec<2>(c[0] / 4, c[1] / 4); }
+IVec<2> block_of(const IVec<2>& c) {
+  return IVec<2>(c[0] / ScatterSchedule<2>::block_cells(0), c[1] / ScatterSchedule<2>::block_cells(1));
+}
 
 TEST(MpmScatterSchedule, GroupsByBlockInIndexOrderAndColoursKeepStencilsApart) {
   const Body b(600);
@@ -121,7 +123,9 @@ void expect_node_order_of_a_colour_sweep(const IVec<D>& cells, int n) {
     for (int colour = 0; colour < (1 << D); ++colour)
       for (const Index p : s.order()) {
         const IVec<D>& c = b.cell[static_cast<std::size_t>((p - 1) / 2)];  // particles are 2k + 1
-        if (colour_of(IVec<D>(c.array() / 4)) == colour) fn(p);
+        IVec<D> block;
+        for (int a = 0; a < D; ++a) block[a] = c[a] / ScatterSchedule<D>::block_cells(a);
+        if (colour_of(block) == colour) fn(p);
       }
   });
   // One thread goes through slabs in several stages, more threads colour by colour;
@@ -134,10 +138,12 @@ void expect_node_order_of_a_colour_sweep(const IVec<D>& cells, int n) {
     for (std::size_t ph = 0; ph + 1 < phases->start.size(); ++ph) {
       std::set<int> colours;
       for (Index i = phases->start[ph]; i < phases->start[ph + 1]; ++i) {
-        IVec<D> block;  // the block index's coordinates (4 cells per block and axis)
+        IVec<D> block;  // the block index's coordinates
         Index rest = phases->blocks[static_cast<std::size_t>(i)];
-        for (int a = 0; a < D; ++a)
-          block[a] = static_cast<int>(rest % ((cells[a] + 3) / 4)), rest /= (cells[a] + 3) / 4;
+        for (int a = 0; a < D; ++a) {
+          const int per_axis = (cells[a] + ScatterSchedule<D>::block_cells(a) - 1) / ScatterSchedule<D>::block_cells(a);
+          block[a] = static_cast<int>(rest % per_axis), rest /= per_axis;
+        }
         colours.insert(colour_of(block));
       }
       EXPECT_EQ(colours.size(), 1u) << "phase " << ph;
@@ -173,7 +179,7 @@ TEST(MpmScatterSchedule, KeptScheduleEqualsAFreshBuild) {
   kept.build(b.grid, b.particles, b.cell);
   EXPECT_EQ(kept.order(), fresh_order());
   const std::vector<Index> before = kept.order();
-  b.cell[5][0] = (b.cell[5][0] + 8) % 40;
+  b.cell[5][1] = (b.cell[5][1] + 8) % 24;  // two blocks along the second axis
   kept.build(b.grid, b.particles, b.cell);
   EXPECT_EQ(kept.order(), fresh_order());
   EXPECT_NE(kept.order(), before);
