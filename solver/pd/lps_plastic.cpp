@@ -172,16 +172,17 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
 // state bonds' (1 for a particle with every bond; 1 when none is left, no force either).
 template <int D>
 double LpsPlastic<D>::live_bond_ratio(const System<D>& sys, Index i) const {
-  double live = 0.0;
+  // Most particles have every bond: look at the flags first (summing the moments of every
+  // particle's family made pure SBPD's run 23 % dearer).
   bool intact = true;
+  for (BondIndex b = sys.families.begin(i); b < sys.families.end(i) && intact; ++b)
+    intact = !sys.bonds.in_reference_family(b) || sys.bonds.in_state(b);
+  if (intact) return 1.0;
+  double live = 0.0;
   sys.for_each_bond(i, BondSet::reference, [&](BondIndex b, Index j, int k) {
-    if (!sys.bonds.in_state(b)) {
-      intact = false;
-      return;
-    }
-    live += deviatoric_moment(sys, j, k);
+    if (sys.bonds.in_state(b)) live += deviatoric_moment(sys, j, k);
   });
-  if (intact || !(live > 0.0) || !(inv_md_[i] > 0.0)) return 1.0;
+  if (!(live > 0.0) || !(inv_md_[i] > 0.0)) return 1.0;
   return 1.0 / (inv_md_[i] * live);
 }
 
