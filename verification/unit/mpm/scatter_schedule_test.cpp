@@ -165,6 +165,38 @@ TEST(MpmScatterSchedule, EveryNodeSumsInTheOrderOfAColourSweep) {
   expect_node_order_of_a_colour_sweep<3>(IVec<3>(40, 40, 48), 5000);
 }
 
+// Why the blocks are long along the first axis: on a lattice body numbered first axis
+// fastest (two particles per cell), each block row is a run of consecutive store indices
+// as long as the block, which the per-particle passes then stream.
+TEST(MpmScatterSchedule, ALatticeBlockRowIsARunOfConsecutiveIndices) {
+  const int nx = 200, ny = 40;  // particles; the grid has nx / 2 × ny / 2 cells
+  Grid<2> grid{Vec<2>::Zero(), 1.0, IVec<2>(nx / 2 + 1, ny / 2 + 1)};
+  std::vector<Index> particles;
+  std::vector<IVec<2>> cell;
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x) {
+      particles.push_back(y * nx + x);
+      cell.emplace_back(x / 2, y / 2);
+    }
+  ScatterSchedule<2> s;
+  s.build(grid, particles, cell);
+  std::map<Index, int> runs;  // run length → how many
+  Index length = 1;
+  for (std::size_t k = 1; k <= s.order().size(); ++k)
+    if (k < s.order().size() && s.order()[k] == s.order()[k - 1] + 1) {
+      ++length;
+    } else {
+      ++runs[length];
+      length = 1;
+    }
+  // Rows of 64 in the three full blocks, of 8 in the last; the last block's top row runs
+  // on into the first row of the next block layer (its indices continue), 4 times.
+  const Index full = 2 * ScatterSchedule<2>::kLeadBlockCells, last = nx - 3 * full, layers = ny / 8;
+  const std::map<Index, int> expected{
+      {last, ny - (layers - 1)}, {full, 3 * ny - (layers - 1)}, {last + full, layers - 1}};
+  EXPECT_EQ(runs, expected);
+}
+
 TEST(MpmScatterSchedule, KeptScheduleEqualsAFreshBuild) {
   Body b(400);
   ScatterSchedule<2> kept;
