@@ -14,10 +14,10 @@
 // the first axis fastest, so a block row is a run of consecutive indices, and every
 // per-particle pass (stencils, G2P, the stress update) reads the particle arrays in
 // those runs. With 4-cell blocks a run was 8 particles at two per cell, too short
-// for the hardware prefetcher; 32 cells make it 64 (measured on the 200² J2 plate and
-// the mid-resolution central crack, one thread: the MPM step 10–15 % cheaper, the
-// stress update most). Longer blocks along the first axis would leave too few blocks
-// per colour for the threads on small bodies. The block shape, not the team size,
+// for the hardware prefetcher; 32 cells make it 64 (measured on one thread: the MPM
+// step of the mid-resolution central crack 11 % cheaper, of the 200² J2 plate 6 %, the
+// stress update most; solver/mpm/README.md). Longer blocks along the first axis would
+// leave fewer blocks per colour for the threads on small bodies. The block shape, not the team size,
 // sets each node's order of summation, so the results stay the same on any number of
 // threads.
 //
