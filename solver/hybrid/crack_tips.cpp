@@ -41,6 +41,34 @@ Index mirrored(const core::SiteMap<D>& map, const IVec<D>& s, const IVec<D>& o) 
   return -1;
 }
 
+// Whether the site s (damage phi_s; `around`: the window's offsets and damage,
+// missing sites mirrored) lies on the ridge of its crack's damage band: along the
+// band's normal — the axis of least covariance about the damage's centroid — no
+// present site within `reach` is more than 1 / fraction times as damaged. (The
+// moment test's axis, the least second moment about s, is the band's direction
+// for a flank site, which sees the band to one side: the flanks vary along the
+// crack, a bond more or less broken per particle, and look one-sided.)
+template <int D>
+bool on_ridge(const core::SiteMap<D>& map, const IVec<D>& s, double phi_s, const std::vector<double>& phi,
+              const std::vector<std::pair<IVec<D>, double>>& around, int reach, double fraction) {
+  double total = phi_s;
+  Vec<D> centroid = Vec<D>::Zero();
+  for (const auto& [o, p] : around) total += p, centroid += p * o.template cast<double>();
+  centroid /= total;
+  Mat<D> covariance = phi_s * centroid * centroid.transpose();
+  for (const auto& [o, p] : around) {
+    const Vec<D> d = o.template cast<double>() - centroid;
+    covariance += p * d * d.transpose();
+  }
+  const Vec<D> normal = Eigen::SelfAdjointEigenSolver<Mat<D>>(covariance).eigenvectors().col(0);
+  double ridge = phi_s;
+  for (int t = -reach; t <= reach; ++t) {
+    const IVec<D> o = (static_cast<double>(t) * normal).array().round().template cast<int>();
+    if (const Index j = map.find(s + o); j >= 0) ridge = std::max(ridge, phi[j]);
+  }
+  return phi_s >= fraction * ridge;
+}
+
 template <int D>
 bool site_less(const IVec<D>& a, const IVec<D>& b) {
   return std::lexicographical_compare(a.data(), a.data() + D, b.data(), b.data() + D);
@@ -54,6 +82,7 @@ void check(const CrackTipSettings& s) {
   require(s.laplacian_threshold < 0.0, "laplacian_threshold", "must be negative (a tip is a minimum of the Laplacian)");
   require(s.end_radius >= 1.0, "end_radius", "must be at least one lattice spacing");
   require(s.end_asymmetry >= 0.0 && s.end_asymmetry <= 1.0, "end_asymmetry", "must lie in [0, 1]");
+  require(s.ridge_fraction >= 0.0 && s.ridge_fraction <= 1.0, "ridge_fraction", "must lie in [0, 1]");
   require(s.tip_offset >= 0.0, "tip_offset", "must not be negative");
   require(s.merge_radius >= 0.0, "merge_radius", "must not be negative");
   require(s.match_radius >= 0.0, "match_radius", "must not be negative");
@@ -117,7 +146,8 @@ std::vector<CrackTip<D>> find_crack_tips(const core::Lattice<D>& lattice, const 
       moment += p * t;
       weight += p * t.norm();
     }
-    if (weight > 0.0 && moment.norm() >= s.end_asymmetry * weight) {
+    if (weight > 0.0 && moment.norm() >= s.end_asymmetry * weight &&
+        on_ridge<D>(map, sites[i], phi[i], phi, around, reach, s.ridge_fraction)) {
       is_end[i] = 1;
       ahead[i] = -moment.normalized();
     }

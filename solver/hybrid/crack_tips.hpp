@@ -21,6 +21,15 @@
 //            on which face s sits. A = 1 for damage on one ray, 0 for a line through
 //            s, so sites along the faces of a crack and branch points (three arms
 //            nearly balance) are dropped.
+//  ridge     and s lies on the ridge of its crack's damage band: along the band's
+//            normal (the axis of least covariance of the window's damage about its
+//            centroid) no site within end_radius has more than φ(s) / ridge_fraction.
+//            A site on the band's flank, a row or two off the crack, sees the band to
+//            one side; the least second moment about s then lies along the crack, and
+//            the flank's damage, which varies from particle to particle along the
+//            crack (a bond more or less broken), passes the one-sidedness test. A
+//            running PD crack in the central-crack plate put up to 18 false tips on
+//            its flanks without this test, and each held a region of keep_radius.
 //  candidate a crack-end site with ∇²φ(s) ≤ ∇²φ at every present 3^D − 1
 //            neighbour. Non-strict on purpose: on a lattice-aligned crack front
 //            equal values are exact, and merging removes the duplicates. Behind a
@@ -56,6 +65,10 @@ struct CrackTipSettings {
   double end_radius = 4.0;
   // Measured: crack faces ≤ 0.2 and a ±30° fork 0.24, ends ≥ 0.66 in 2D; a 3D front 0.39 (a half-disc, not a ray).
   double end_asymmetry = 0.3;
+  // A crack end lies on the ridge of the damage band: φ(s) at least this share of the largest φ
+  // across the band (within end_radius). Measured: a running tip's site 1.0 (≈ 0.6 even if the
+  // band's axis were taken wrongly), the band's flanks 0.31–0.37. 0 turns the test off.
+  double ridge_fraction = 0.5;
   // The minimum of ∇²φ lies 0.75 Δx behind the end of a PD cut on average (δ = 3Δx, 40 ends and angles swept).
   double tip_offset = 0.75;
   // A horizon: damage cannot resolve two tips closer than δ, a crack end spreads its minima over ~δ.

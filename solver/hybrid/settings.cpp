@@ -36,6 +36,7 @@ void Settings::validate(const std::string& file) const {
               "(units of 1/Δx²)");
   check_range(file, "hybrid.tips.end_radius", tips.end_radius, 0.0, big, true, false, dx);
   check_range(file, "hybrid.tips.end_asymmetry", tips.end_asymmetry, 0.0, 1.0, false, true, "");
+  check_range(file, "hybrid.tips.ridge_fraction", tips.ridge_fraction, 0.0, 1.0, false, false, "");
   check_range(file, "hybrid.tips.tip_offset", tips.tip_offset, 0.0, big, false, false, dx);
   check_range(file, "hybrid.tips.merge_radius", tips.merge_radius, 0.0, big, true, false, dx);
   check_range(file, "hybrid.tips.match_radius", tips.match_radius, 0.0, big, true, false, dx);

@@ -193,8 +193,9 @@ void Simulation<D>::manage_regions() {
   }
   if (may_shrink && expansions_since_shrink_ >= settings_.shrink_every) {
     expansions_since_shrink_ = 0;
-    convert(before);  // tips are searched on the grown region, with its converted state
-    const std::vector<ParticleKind> grown = kind;
+    // Tips are searched on the grown region (damage is the bonds' alone, whatever the
+    // kinds), and only then is anything converted: a particle the expansion took in and
+    // the shrink gives back keeps its grid state instead of a round trip through PD.
     track_tips();
     // Without a tip (the tracker found none) nothing is reverted: the paper's rule would
     // revert the whole region, crack included.
@@ -203,8 +204,6 @@ void Simulation<D>::manage_regions() {
       for (const auto& tip : tips_) at.push_back(tip.position);
       if (!shrink<D>(map_, at, damaged_pd_particles(), kind, removed_).empty()) ++events_.shrinks;
     }
-    convert(grown);
-    return;
   }
   convert(before);
 }
@@ -247,12 +246,14 @@ template <int D>
 std::vector<std::uint8_t> Simulation<D>::damaged_pd_particles() const {
   const auto& sys = pd_.system();
   std::vector<std::uint8_t> keep(static_cast<std::size_t>(sys.n_real()), 0);
-  for (const Index i : pd_.movers())
+  for (Index i = 0; i < sys.n_real(); ++i) {
+    if (sys.particles.kind[i] != ParticleKind::pd) continue;
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
       if (sys.bonds.broken(b)) {
         keep[i] = 1;
         break;
       }
+  }
   return keep;
 }
 
@@ -262,7 +263,8 @@ const std::vector<CrackTip<D>>& Simulation<D>::track_tips() {
   const auto& p = sys.particles;
   std::vector<IVec<D>> sites;
   std::vector<double> phi;
-  for (const Index i : pd_.movers()) {
+  for (Index i = 0; i < p.n_real; ++i) {  // the PD particles by kind: those of a grown region not yet converted too
+    if (p.kind[i] != ParticleKind::pd) continue;
     sites.push_back(p.site[i]);
     phi.push_back(pd::particle_damage(sys, i));
   }

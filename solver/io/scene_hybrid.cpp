@@ -65,6 +65,7 @@ void read_hybrid(const TomlReader& t, Scene& s) {
     tip("laplacian_threshold", h.tips.laplacian_threshold);
     tip("end_radius", h.tips.end_radius);
     tip("end_asymmetry", h.tips.end_asymmetry);
+    tip("ridge_fraction", h.tips.ridge_fraction);
     tip("tip_offset", h.tips.tip_offset);
     tip("merge_radius", h.tips.merge_radius);
     tip("match_radius", h.tips.match_radius);

@@ -344,23 +344,26 @@ CrackRun run_edge_crack(hybrid::Mode mode, int steps, double speed, bool audit =
     return b;
   };
   Index broken = broken_bonds();
-  std::vector<ParticleKind> before = p.kind;
   Index above = -1, below = -1;  // the mouth: first column, one row either side of the cut
   for (Index i = 0; i < p.n_real; ++i) {
     if (std::abs(p.x0[i][0] - 0.5e-3) > 1e-9) continue;
     if (std::abs(p.x0[i][1] - 16.5e-3) < 1e-9) above = i;
     if (std::abs(p.x0[i][1] - 14.5e-3) < 1e-9) below = i;
   }
+  // PD particles with a broken bond when the step began: the step's shrink decides on
+  // them. (A particle that reverts undamaged becomes transition, and its bond to a PD
+  // particle can break in the same step's force evaluation, as in the paper; the
+  // expansion that break triggers takes it back.)
+  std::vector<std::uint8_t> damaged(static_cast<std::size_t>(p.n_real), 0);
   for (int n = 1; n <= steps; ++n) {
+    for (Index i = 0; i < p.n_real; ++i)
+      damaged[i] = p.kind[i] == ParticleKind::pd && pd::particle_damage(sys, i) > 0.0;
     body.hybrid->step(kDt);
     r.region_violations += body.hybrid->region_violations();
     const Index now = broken_bonds();
     r.healed += now < broken;
     broken = now;
-    for (Index i = 0; i < p.n_real; ++i)
-      if (before[i] == ParticleKind::pd && p.kind[i] != ParticleKind::pd && pd::particle_damage(sys, i) > 0.0)
-        ++r.damaged_reverted;
-    before = p.kind;
+    for (Index i = 0; i < p.n_real; ++i) r.damaged_reverted += damaged[i] && p.kind[i] != ParticleKind::pd;
     if (n % 50 != 0) continue;
     Vec<2> front = Vec<2>::Zero();
     for (const Index i : body.pd->movers())

@@ -167,6 +167,33 @@ TEST(CrackTips, BranchingCrackHasTipsAtItsEndsOnly) {
   EXPECT_LE(tip_error(f, tips, {start, up, down}), kTipTolerance);
 }
 
+// The damage band a running crack leaves is wider than a clean cut's, and its flanks
+// vary from particle to particle along it (a bond more or less broken). A flank site
+// then sees the band on one side along the crack and passed the one-sidedness test.
+// The field: a 26 × 14 patch of the central-crack plate's PD region (Δx = 0.5 mm,
+// mode expand_shrink, t = 0.13 ms, broken bonds of 28 per particle, top row first),
+// behind both tips — 3 false tips here without the ridge test, 18 along the whole crack.
+TEST(CrackTips, RaggedFlanksOfARunningCrackAddNoTips) {
+  const char* broken[] = {"00000000000000000000000000", "00000000000000000000000000", "00000000000000000000000000",
+                          "00000000000000000000000000", "11111111111111111010001000", "54544645644443533223212312",
+                          "99999a89a88888a88878877877", "ihgjjjjgjjiggggigcgfccgdcd", "ceegfccefgcfgeeifcggccgdcd",
+                          "77888877888788988878877877", "11233211332233233223212312", "00010000010010010011001000",
+                          "00000000000000000000000000", "00000000000000000000000000"};
+  Field<2> f;
+  f.lattice = test_lattice<2>();
+  const int rows = 14;
+  for (int y = 0; y < rows; ++y)
+    for (int x = 0; x < 26; ++x) {
+      const char c = broken[rows - 1 - y][x];
+      f.sites.emplace_back(x, y);
+      f.phi.push_back((c <= '9' ? c - '0' : c - 'a' + 10) / 28.0);
+    }
+  CrackTipSettings without_ridge;
+  without_ridge.ridge_fraction = 0.0;
+  EXPECT_EQ(find_crack_tips(f.lattice, f.sites, f.phi, without_ridge).size(), 3u) << "the field must be a hard case";
+  EXPECT_TRUE(find_crack_tips(f.lattice, f.sites, f.phi, CrackTipSettings{}).empty());
+}
+
 TEST(CrackTips, NoTipsWithoutDamageOrWithUniformDamage) {
   auto f = damage_2d({});
   EXPECT_TRUE(find_crack_tips(f.lattice, f.sites, f.phi, CrackTipSettings{}).empty());

@@ -33,6 +33,7 @@ TEST(HybridSettings, BadValuesNameTheirKey) {
   expect_rejected([](Settings& s) { s.tips.end_radius = 0.0; }, "hybrid.tips.end_radius");
   expect_rejected([](Settings& s) { s.tips.end_asymmetry = 1.0; }, "hybrid.tips.end_asymmetry");
   expect_rejected([](Settings& s) { s.tips.tip_offset = -1.0; }, "hybrid.tips.tip_offset");
+  expect_rejected([](Settings& s) { s.tips.ridge_fraction = 1.5; }, "hybrid.tips.ridge_fraction");
   expect_rejected([](Settings& s) { s.tips.merge_radius = -3.0; }, "hybrid.tips.merge_radius");
   expect_rejected([](Settings& s) { s.tips.match_radius = 0.0; }, "hybrid.tips.match_radius");
 }
