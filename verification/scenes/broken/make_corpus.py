@@ -188,6 +188,7 @@ CASES = {
     "hybrid_unknown_key": ("hybrid.pd_radus | unknown key", hybrid("[hybrid]\n", "[hybrid]\npd_radus = 7\n")),
     "hybrid_shrink_every_zero": ("hybrid.shrink_every | must be an integer in [1, 1000000]", hybrid("[hybrid]\n", "[hybrid]\nshrink_every = 0\n")),
     "hybrid_tips_damage_threshold": ("hybrid.tips.damage_threshold | must be in (0, 1)", HYBRID_BASE + "\n[hybrid.tips]\ndamage_threshold = 1.5\n"),
+    "hybrid_tips_ridge_fraction": ("hybrid.tips.ridge_fraction | must be in [0, 1]", HYBRID_BASE + "\n[hybrid.tips]\nridge_fraction = 1.5\n"),
     "hybrid_tips_zero_merge_radius": ("hybrid.tips.merge_radius | must be in (0, 1e+06]", HYBRID_BASE + "\n[hybrid.tips]\nmerge_radius = 0\n"),
     "hybrid_tips_unknown_key": ("hybrid.tips.radius | unknown key", HYBRID_BASE + "\n[hybrid.tips]\nradius = 3\n"),
     "hybrid_symmetry": ("symmetry[0] | not supported in a hybrid scene", HYBRID_BASE + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n'),
