@@ -602,9 +602,10 @@ TEST(FastHybrid, EdgeCrackAgainstTheAllPdRun) {
                          .problem = kProblem});
   test::record_gate(Gate{.id = "hybrid.no_healing",
                          .claim =
-                             "in the edge-crack runs in modes expand and expand_shrink (8000 steps, thousands of "
+                             "in the edge-crack runs in modes expand and expand_shrink (8000 steps, about 1900 "
                              "conversions both ways) no broken bond shall ever be restored and no PD particle with "
-                             "a broken bond shall leave PD (steps with fewer broken bonds + such departures)",
+                             "a broken bond when a step begins shall leave PD in it (steps with fewer broken bonds "
+                             "+ such departures)",
                          .measured = static_cast<double>(healed + damaged_reverted),
                          .expected = 0.0,
                          .compare = Compare::at_most,
