@@ -29,15 +29,15 @@ template <int D>
 void to_pd(const mpm::Simulation<D>& mpm, const pd::System<D>& sys, pd::Model<D>& model, Index i) {
   if constexpr (D >= 2)
     if (auto* plastic = dynamic_cast<pd::LpsPlastic<D>*>(&model))
-      carry_plastic_state_into_pd<D>(sys, *plastic, i, mpm.state().history[i]);
+      carry_plastic_state_into_pd<D>(sys, *plastic, i, mpm.state().history(i));
 }
 
 template <int D>
 Mat<3> grid_elastic_strain(const mpm::Simulation<D>& mpm, Index i) {
   Mat<3> log_u = Mat<3>::Zero();
-  log_u.topLeftCorner<D, D>() = mpm::polar_log<D>(mpm.state().F[i]).log_U;
+  log_u.topLeftCorner<D, D>() = mpm::polar_log<D>(mpm.state().F.get(i)).log_U;
   if constexpr (D == 2) log_u(2, 2) = mpm.state().out_of_plane_strain[i];
-  return log_u - mpm.state().history[i].plastic_strain;
+  return log_u - mpm.state().history(i).plastic_strain;
 }
 
 template <int D>
@@ -45,7 +45,7 @@ void to_pd_elastic_state(const mpm::Simulation<D>& mpm, const pd::System<D>& sys
   if constexpr (D >= 2)
     if (auto* plastic = dynamic_cast<pd::LpsPlastic<D>*>(&model))
       carry_elastic_state_into_pd<D>(sys, *plastic, i, grid_elastic_strain<D>(mpm, i),
-                                     mpm.state().history[i].eq_plastic_strain);
+                                     mpm.state().history(i).eq_plastic_strain);
 }
 
 template <int D>
@@ -53,7 +53,7 @@ void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation
             PlasticTransfer transfer) {
   const std::optional<Mat<D>> F = bond_deformation_gradient<D>(sys, i);
   const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&model);
-  mpm::PointHistory h = mpm.state().history[i];
+  mpm::PointHistory h = mpm.state().history(i);
   if (transfer == PlasticTransfer::elastic_state && F && plastic)
     if (const std::optional<Mat<3>> eps_e = elastic_strain_from_pd<D>(sys, *plastic, i)) {
       h.plastic_strain.setZero();
@@ -67,7 +67,7 @@ void to_mpm(const pd::System<D>& sys, const pd::Model<D>& model, mpm::Simulation
   if constexpr (D >= 2)
     if (plastic)
       if (const auto fitted = plastic_state_from_pd<D>(sys, *plastic, i)) h = *fitted;
-  mpm.set_state(i, F.value_or(mpm.state().F[i]), h);
+  mpm.set_state(i, F.value_or(mpm.state().F.get(i)), h);
 }
 
 template std::optional<Mat<2>> bond_deformation_gradient<2>(const pd::System<2>&, Index);

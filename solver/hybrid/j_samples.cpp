@@ -27,7 +27,7 @@ std::vector<core::JSample> j_samples(const Simulation<2>& h, const Vec<2>& centr
     if (mpm.failed(i)) continue;
     const auto F = bond_deformation_gradient<2>(sys, i);
     if (!F) continue;
-    mpm::PointHistory history = mpm.state().history[i];
+    mpm::PointHistory history = mpm.state().history(i);
     if (plastic)
       if (const auto fitted = plastic_state_from_pd<2>(sys, *plastic, i)) history = *fitted;
     mpm::StressResult r;

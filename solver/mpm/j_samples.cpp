@@ -9,12 +9,12 @@ double monotonic_plastic_work(const Material& m, double eq) {
 
 std::optional<core::JSample> j_sample(const Simulation<2>& sim, Index i) {
   if (sim.failed(i)) return std::nullopt;
-  const Mat<2>& F = sim.state().F[i];
+  const Mat<2> F = sim.state().F.get(i);
   core::JSample s;
   s.X = sim.particles().x0[i];
   s.volume = sim.particles().volume[i];
   s.grad_u = F - Mat<2>::Identity();
-  s.stress = sim.state().kirchhoff[i].topLeftCorner<2, 2>() * F.inverse().transpose();
+  s.stress = sim.state().kirchhoff.get(i).topLeftCorner<2, 2>() * F.inverse().transpose();
   s.energy = sim.state().energy[i] + monotonic_plastic_work(sim.settings().material, sim.eq_plastic_strain(i));
   return s;
 }

@@ -24,14 +24,17 @@ void prefetch_scattered(const ScatterSource2& s, ScatterFields what, Index p) {
   if (what.forces) {
     __builtin_prefetch(s.volume + p);
     __builtin_prefetch(s.external + p);
+    for (const double* tau : s.tau) __builtin_prefetch(tau + p);
   }
 }
 
 IVec<2> node_stride(const ScatterTarget2& g) { return IVec<2>(1, g.row_stride); }
 IVec<3> node_stride(const ScatterTarget3& g) { return g.stride; }
-// The particle's stress: 2D keeps its in-plane τ in schedule order, 3D reads the particle's.
-const Mat<2>& tau_of(const ScatterSource2& s, Index k, Index) { return s.tau[k]; }
-const Mat<3>& tau_of(const ScatterSource3& s, Index, Index p) { return s.tau[p]; }
+// The particle's stress (2D: its in-plane block).
+Mat<2> tau_of(const ScatterSource2& s, Index p) {
+  return (Mat<2>() << s.tau[0][p], s.tau[2][p], s.tau[1][p], s.tau[3][p]).finished();
+}
+Mat<3> tau_of(const ScatterSource3& s, Index p) { return s.tau->get(p); }
 
 // The reference, 2D and 3D: Simulation's generic scatter with 3 nodes per axis.
 template <int D, class Source, class Target>
@@ -43,7 +46,7 @@ void scatter_rows_scalar(const Source& s, const Target& g, ScatterFields what, I
     const Index p = s.order[k];
     const double m = s.mass[p];
     const Vec<D> mv = m * s.velocity[p];
-    const Mat<D> Vtau = s.volume[p] * tau_of(s, k, p);
+    const Mat<D> Vtau = s.volume[p] * tau_of(s, p);
     const Vec<D> fe = s.external[p];
     const bool external = what.external && carries_external_force(fe);
     for_each_grid_node<D, 3>(s.stencil[k], stride, [&](Index node, double w, const Vec<D>& grad) {
@@ -78,8 +81,7 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
     const bool external = what.forces && what.external && carries_external_force<2>(s.external[p]);
     if (what.forces) {
       const double vol = s.volume[p];
-      const Mat<2>& tau = s.tau[k];
-      const double v00 = vol * tau(0, 0), v10 = vol * tau(1, 0), v01 = vol * tau(0, 1), v11 = vol * tau(1, 1);
+      const double v00 = vol * s.tau[0][p], v10 = vol * s.tau[1][p], v01 = vol * s.tau[2][p], v11 = vol * s.tau[3][p];
       va = _mm512_set_pd(0.0, 0.0, v10, v00, v10, v00, v10, v00);  // −(V τ ∇S) = −(va ∂S/∂x + vb ∂S/∂y)
       vb = _mm512_set_pd(0.0, 0.0, v11, v01, v11, v01, v11, v01);
       const Vec<2> f = s.external[p];
@@ -130,7 +132,7 @@ __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource
     Vec<3> fe = Vec<3>::Zero();
     bool external = false;
     if (what.forces) {
-      Vtau = s.volume[p] * s.tau[p];
+      Vtau = s.volume[p] * s.tau->get(p);
       fe = s.external[p];
       external = what.external && carries_external_force(fe);
     }

@@ -7,24 +7,26 @@
 // and adds to every node in the same particle order, so the bits are the scalar
 // version's (the scalar one is the reference: Simulation's scatter before the rows).
 // verification/unit/mpm/scatter_rows_test.cpp compares them bit for bit.
+#include <array>
 #include <vector>
 
 #include "solver/core/types.hpp"
 #include "solver/mpm/lane_variant.hpp"
+#include "solver/mpm/matrix_arrays.hpp"
 #include "solver/mpm/shape_function.hpp"
 
 namespace pdmpm::mpm {
 
 // The particles' data, read as source.array[order[k]] for the run's positions k (the
-// stencil and the stress as array[k]).
+// stencil as stencil[k]).
 struct ScatterSource2 {
   const Index* order = nullptr;
   const Stencil<2>* stencil = nullptr;  // stencil[k], in schedule order
   const double* mass = nullptr;
   const Vec<2>* velocity = nullptr;
   const double* volume = nullptr;
-  const Mat<2>* tau = nullptr;       // in-plane Kirchhoff stress, tau[k] in schedule order
-  const Vec<2>* external = nullptr;  // external force of the particle
+  std::array<const double*, 4> tau{};  // Kirchhoff stress τ₀₀, τ₁₀, τ₀₁, τ₁₁ by particle
+  const Vec<2>* external = nullptr;    // external force of the particle
 };
 
 struct ScatterTarget2 {
@@ -57,7 +59,7 @@ struct ScatterSource3 {
   const double* mass = nullptr;
   const Vec<3>* velocity = nullptr;
   const double* volume = nullptr;
-  const Mat<3>* tau = nullptr;  // Kirchhoff stress of the particle (tau[order[k]])
+  const MatrixArrays<3, 3>* tau = nullptr;  // Kirchhoff stress of the particles (by particle, not order)
   const Vec<3>* external = nullptr;
 };
 

@@ -104,7 +104,7 @@ class Simulation {
   // Per-particle outputs.
   double von_mises(Index p) const;
   double triaxiality(Index p) const;
-  double eq_plastic_strain(Index p) const { return state_.history[p].eq_plastic_strain; }
+  double eq_plastic_strain(Index p) const { return state_.eq_plastic_strain[p]; }
   bool failed(Index p) const { return state_.failed[p] != 0; }
   // Particles that failed during the last step, ascending.
   const std::vector<Index>& newly_failed() const { return newly_failed_; }
@@ -143,6 +143,7 @@ class Simulation {
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_stress_in_lanes(const std::vector<Vec<D>>& grid_velocity, double dt, const PlaneStressLaw& law,
                               Index& bad);
+  void store_lanes(Index k0, const PlaneStressLanes& lanes, const double* eps_f);
   void advance_deformation(Index k, const std::vector<Vec<D>>& grid_velocity, double dt);
   Mat<D> velocity_gradient(Index k, const std::vector<Vec<D>>& grid_velocity) const;
   void stretch_domain(Index p);
@@ -174,18 +175,9 @@ class Simulation {
   std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
   std::vector<IVec<D>> cell_;        // per active particle this step: its cell (scratch of compute_stencils)
   std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
-  // In 2D with 3 × 3 stencils the scatter reads the in-plane Kirchhoff stress in schedule
-  // order, written where the stress update writes the particle's: it streams instead of
-  // gathering 72-byte tensors. Valid while schedule_.generation() == tau_generation_.
-  std::vector<Mat<D>> tau_in_order_;
-  std::uint64_t tau_generation_ = std::numeric_limits<std::uint64_t>::max();
   bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)
-  void keep_tau_in_order(Index k, Index p) {
-    if (rows()) tau_in_order_[k] = state_.kirchhoff[p].template topLeftCorner<D, D>();
-  }
-  void refresh_tau_in_order();
-  std::vector<Vec<D>> ext_force_;    // per particle external force this step (N)
-  bool any_external_force_ = false;  // some active particle has one this step
+  std::vector<Vec<D>> ext_force_;                  // per particle external force this step (N)
+  bool any_external_force_ = false;                // some active particle has one this step
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;

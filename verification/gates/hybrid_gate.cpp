@@ -187,8 +187,8 @@ RoundTrip mpm_pd_mpm(const Mat<2>& F, hybrid::PlasticTransfer transfer = hybrid:
   EXPECT_GE(probe, 0);
   RoundTrip r;
   const Mat<3> stress0 = body.mpm->state().cauchy(probe);
-  r.eq_strain_before = body.mpm->state().history[probe].eq_plastic_strain;
-  r.plastic_before = body.mpm->state().history[probe].plastic_strain;
+  r.eq_strain_before = body.mpm->state().history(probe).eq_plastic_strain;
+  r.plastic_before = body.mpm->state().history(probe).plastic_strain;
   double stored = 0.0;
   for (Index i = 0; i < p.n_real; ++i) stored += body.mpm->state().energy[i] * p.volume[i];
 
@@ -206,8 +206,8 @@ RoundTrip mpm_pd_mpm(const Mat<2>& F, hybrid::PlasticTransfer transfer = hybrid:
   const auto Fpd = hybrid::bond_deformation_gradient<2>(body.pd_setup.system, probe);
   r.grad_error = Fpd ? (*Fpd - F).norm() : std::numeric_limits<double>::infinity();
   r.stress_change = (body.mpm->state().cauchy(probe) - stress0).norm() / stress0.norm();
-  r.eq_strain_after = body.mpm->state().history[probe].eq_plastic_strain;
-  r.plastic_after = body.mpm->state().history[probe].plastic_strain;
+  r.eq_strain_after = body.mpm->state().history(probe).eq_plastic_strain;
+  r.plastic_after = body.mpm->state().history(probe).plastic_strain;
   r.von_mises = body.mpm->von_mises(probe);
   return r;
 }

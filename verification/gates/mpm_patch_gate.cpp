@@ -144,7 +144,7 @@ std::pair<double, double> rigid_rotation(core::Setting setting, mpm::ShapeFuncti
   double dev = 0.0, angle_err = 0.0;
   for (Index p = 0; p < particles.n_real; ++p) {
     // Rotation the particle has undergone: polar rotation of F F₀⁻¹.
-    const Mat<D> Rd = mpm::polar_log<D>(sim.state().F[p] * F0.inverse()).R;
+    const Mat<D> Rd = mpm::polar_log<D>(sim.state().F.get(p) * F0.inverse()).R;
     const Mat<3> R = mpm::embed_deformation<D>(Rd);
     const Mat<3> back = R.transpose() * sim.state().cauchy(p) * R;
     dev = std::max(dev, (back - sigma0).norm() / s.material.elastic.E);

@@ -21,7 +21,7 @@ struct ScatterParticles {
   std::vector<Stencil<2>> stencil;
   std::vector<double> mass, volume;
   std::vector<Vec<2>> velocity, external;
-  std::vector<Mat<2>> tau;  // in position order
+  MatrixArrays<3, 3> tau;  // in-plane τ, by particle
 };
 
 // n particles in a grid of `nodes` × `nodes` (h = 1), away from its edges, in a shuffled order.
@@ -29,6 +29,7 @@ ScatterParticles random_scatter_particles(int n, int nodes, unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0), inside(2.0, nodes - 3.0);
   ScatterParticles s;
+  s.tau.resize(n, Mat<3>::Zero());
   for (int i = 0; i < n; ++i) {
     s.order.push_back(i);
     const Vec<2> x(inside(rng), inside(rng));
@@ -37,11 +38,11 @@ ScatterParticles random_scatter_particles(int n, int nodes, unsigned seed) {
     s.volume.push_back(0.25 + 0.1 * u(rng));
     s.velocity.emplace_back(u(rng), u(rng));
     s.external.emplace_back(u(rng), u(rng));
-    Mat<2> t;
+    Mat<3> t = Mat<3>::Zero();
     t(0, 0) = 1e8 * u(rng), t(1, 1) = 1e8 * u(rng), t(0, 1) = t(1, 0) = 1e8 * u(rng);
-    s.tau.push_back(t);
+    s.tau.set(i, t);
   }
-  std::shuffle(s.order.begin(), s.order.end(), rng);  // stencils and stresses stay in position order
+  std::shuffle(s.order.begin(), s.order.end(), rng);  // stencils stay in position order
   return s;
 }
 
@@ -59,7 +60,7 @@ TEST(ScatterRows, EveryVersionGivesTheScalarBitsForEveryCombinationOfFields) {
   const int nodes = 12, n = 400;  // ≈ 4 particles per cell: nodes sum up to ~36 contributions
   const ScatterParticles s = random_scatter_particles(n, nodes, 3);
   const ScatterSource2 source{s.order.data(),  s.stencil.data(), s.mass.data(),    s.velocity.data(),
-                              s.volume.data(), s.tau.data(),     s.external.data()};
+                              s.volume.data(), in_plane(s.tau),  s.external.data()};
   const auto variants = scatter_rows_variants();
   ASSERT_GE(variants.size(), 1u);
   for (int bits = 1; bits < 16; ++bits) {
@@ -111,8 +112,10 @@ TEST(ScatterRows, Every3dVersionGivesTheScalarBitsForEveryCombinationOfFields) {
     tau.push_back(t);
   }
   std::shuffle(order.begin(), order.end(), rng);  // stencils stay in position order
+  MatrixArrays<3, 3> tau_entries;
+  tau_entries.unpack(tau);
   const ScatterSource3 source{order.data(),  stencil.data(), mass.data(),    velocity.data(),
-                              volume.data(), tau.data(),     external.data()};
+                              volume.data(), &tau_entries,   external.data()};
   const IVec<3> stride(1, nodes, nodes * nodes);
   const int N = nodes * nodes * nodes;
   struct Grid3 {

@@ -46,7 +46,7 @@ std::vector<Vec<2>> run_plate(int threads, ShapeFunction shape, UpdateScheme sch
   for (Index p = 0; p < particles.n_real; ++p) {
     out.push_back(particles.u[p]);
     out.push_back(particles.v[p]);
-    out.push_back(Vec<2>(sim.state().cauchy(p)(0, 0), sim.state().history[p].eq_plastic_strain));
+    out.push_back(Vec<2>(sim.state().cauchy(p)(0, 0), sim.state().history(p).eq_plastic_strain));
   }
   return out;
 }
@@ -92,7 +92,7 @@ TEST(MpmSimulation, AStressSetBetweenStepsReachesTheGrid) {
   for (Index p = 0; p < particles.n_real; ++p)
     if ((particles.x0[p] - Vec<2>(0.01, 0.01)).norm() < (particles.x0[centre] - Vec<2>(0.01, 0.01)).norm()) centre = p;
   sim.set_deformation_gradient(centre, 1.001 * Mat<2>::Identity());  // a stretched point: 0.2 GPa
-  ASSERT_GT(sim.state().kirchhoff[centre](0, 0), 1e8);
+  ASSERT_GT(sim.state().kirchhoff.get(centre)(0, 0), 1e8);
   sim.step(dt);
   double fastest = 0.0;
   for (Index p = 0; p < particles.n_real; ++p) fastest = std::max(fastest, particles.v[p].norm());
