@@ -44,6 +44,8 @@ void add_plastic_increment(ParticleState<D>& state, Index p, const PlaneStressLa
   state.eq_plastic_strain[p] += lanes.d_alpha[l];
 }
 
+static_assert(kLawLanes == 8, "copy8, consecutive_eight and prefetch_run handle groups of eight");
+
 // Eight doubles from one array to another (a lane buffer and a run of eight particles).
 void copy8(double* to, const double* from) { std::memcpy(to, from, kLawLanes * sizeof(double)); }
 
@@ -539,15 +541,16 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
     const Index groups = (na + kLawLanes - 1) / kLawLanes;
     struct Inputs {
+      bool run = false;      // the group is eight consecutive particles (consecutive_eight)
       DeformationLanes def;  // L and F
       PlaneStressLanes law;  // the plastic state (the strain and rotation come from the decomposition)
     };
     auto gather = [&](Index gi, Inputs& in) {
       const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
-      const bool run = consecutive_eight(order, k0, n);
+      const bool run = in.run = consecutive_eight(order, k0, n);
       const MatrixArrays<3, 3>& ep = state_.plastic_strain;
       {  // the group after it: its particles' state
-        const Index p = order[std::min(k0 + 8, na - 1)];
+        const Index p = order[std::min(k0 + kLawLanes, na - 1)];
         const MatrixArrays<2, 2>& F = state_.F;
         prefetch_run(
             p,
@@ -592,7 +595,7 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       const LaneCopy to_polar[] = {
           {polar.f00, def.f00}, {polar.f10, def.f10}, {polar.f01, def.f01}, {polar.f11, def.f11}};
       copy_lanes(to_polar, 4);
-      const bool run = consecutive_eight(order, k0, n);
+      const bool run = in.run;
       const Index* group = order.data() + k0;
       MatrixArrays<2, 2>& F = state_.F;
       scatter_lanes(F.entry(0, 0), def.f00, group, n, run), scatter_lanes(F.entry(1, 0), def.f10, group, n, run);

@@ -133,27 +133,40 @@ TEST(FastMpmUniaxialJ2, SinglePointFollowsBilinearCurve) {
   monotone_curve<3>(core::Setting::solid3d, "3D", ws, wl, nullptr);
   monotone_curve<1>(core::Setting::bar1d, "1D bar", ws, wl, nullptr);
   std::cout << "plane stress: stress " << ws_ps << " lateral " << wl_ps << "; all: " << ws << " " << wl << "\n";
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.stress",
-                         .claim = "a J2 material point in uniaxial stress (plane-stress, 3D and 1D return maps) shall follow "
-                         "σ = σ_y + E_t(ε − σ_y/E) beyond yield and E ε below it, to 1e-10 relative, up to ε = 5 %",
-                         .measured = ws, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "backward-Euler return mapping with linear hardening is exact along a radial stress path; "
-                         "the residue is the secant solve of σ₂₂ = 0 (to 1e-15 σ_y) and rounding",
-                         .source = kSource, .unit = "", .problem = kProblem});
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.lateral",
-                         .claim = "the lateral (and plane-stress thickness) strain shall equal −νσ/E − ε_p/2 to 1e-10 relative",
-                         .measured = wl, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
-                         .source = "[simo-hughes1998] J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E", .unit = "", .problem = kProblem});
-  test::record_data(kProblem, "01_stress_strain",
-                    {{"kind", "plot"},
-                     {"title", "Uniaxial stress–strain curve, one plane-stress material point"},
-                     {"xlabel", "log strain ε"},
-                     {"ylabel", "Kirchhoff stress τ₁₁ (MPa)"},
-                     {"xscale", "linear"},
-                     {"yscale", "linear"},
-                     {"series", plot},
-                     {"caption", "E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa (H = E E_t/(E − E_t) = 1.46 GPa)."}});
+  test::record_gate(Gate{
+      .id = "mpm.uniaxial_j2.point.stress",
+      .claim = "a J2 material point in uniaxial stress (plane-stress, 3D and 1D return maps) shall follow "
+               "σ = σ_y + E_t(ε − σ_y/E) beyond yield and E ε below it, to 1e-10 relative, up to ε = 5 %",
+      .measured = ws,
+      .expected = 1e-10,
+      .tolerance = 0.0,
+      .compare = Compare::at_most,
+      .tolerance_reason = "backward-Euler return mapping with linear hardening is exact along a radial stress path; "
+                          "the residue is the secant solve of σ₂₂ = 0 (to 1e-15 σ_y) and rounding",
+      .source = kSource,
+      .unit = "",
+      .problem = kProblem});
+  test::record_gate(
+      Gate{.id = "mpm.uniaxial_j2.point.lateral",
+           .claim = "the lateral (and plane-stress thickness) strain shall equal −νσ/E − ε_p/2 to 1e-10 relative",
+           .measured = wl,
+           .expected = 1e-10,
+           .tolerance = 0.0,
+           .compare = Compare::at_most,
+           .tolerance_reason = "exact for the radial path (isochoric plastic flow, Hooke's law for the elastic part)",
+           .source = "[simo-hughes1998] J2 flow rule: ε_p,lat = −ε_p/2; Hooke: ε_e,lat = −νσ/E",
+           .unit = "",
+           .problem = kProblem});
+  test::record_data(
+      kProblem, "01_stress_strain",
+      {{"kind", "plot"},
+       {"title", "Uniaxial stress–strain curve, one plane-stress material point"},
+       {"xlabel", "log strain ε"},
+       {"ylabel", "Kirchhoff stress τ₁₁ (MPa)"},
+       {"xscale", "linear"},
+       {"yscale", "linear"},
+       {"series", plot},
+       {"caption", "E = 215 GPa, ν = 0.33, σ_y = 340 MPa, E_t = 1.45 GPa (H = E E_t/(E − E_t) = 1.46 GPa)."}});
 }
 
 TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
@@ -177,31 +190,46 @@ TEST(FastMpmUniaxialJ2, CyclicLoadingHardensIsotropically) {
   }
   // Isotropic hardening: the peak stress grows every cycle by E_t times the plastic strain range.
   EXPECT_GT(std::abs(exact.sigma), 340e6 + 1.45e9 * 0.01);
-  std::cout << "cyclic worst " << worst << " final alpha " << drv.history.eq_plastic_strain << " vs " << exact.alpha << "\n";
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.cyclic",
-                         .claim = "under ±1 % strain cycles (three full cycles, plane stress) the J2 point shall follow the "
-                         "exact isotropic-hardening response (elastic slope E between ±κ(ε̄_p), slope E_t on yield) "
-                         "to 1e-10 σ_y",
-                         .measured = worst, .expected = 1e-10, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "each increment is either elastic or plastic along a fixed uniaxial direction, where the "
-                         "return map is exact; increments straddling yield are split exactly by both",
-                         .source = "linear isotropic hardening, κ = σ_y + H ε̄_p ([simo-hughes1998] §2.3)", .unit = "", .problem = kProblem});
+  std::cout << "cyclic worst " << worst << " final alpha " << drv.history.eq_plastic_strain << " vs " << exact.alpha
+            << "\n";
+  test::record_gate(Gate{
+      .id = "mpm.uniaxial_j2.point.cyclic",
+      .claim = "under ±1 % strain cycles (three full cycles, plane stress) the J2 point shall follow the "
+               "exact isotropic-hardening response (elastic slope E between ±κ(ε̄_p), slope E_t on yield) "
+               "to 1e-10 σ_y",
+      .measured = worst,
+      .expected = 1e-10,
+      .tolerance = 0.0,
+      .compare = Compare::at_most,
+      .tolerance_reason = "each increment is either elastic or plastic along a fixed uniaxial direction, where the "
+                          "return map is exact; increments straddling yield are split exactly by both",
+      .source = "linear isotropic hardening, κ = σ_y + H ε̄_p ([simo-hughes1998] §2.3)",
+      .unit = "",
+      .problem = kProblem});
   test::record_gate(Gate{.id = "mpm.uniaxial_j2.point.cyclic_eq_plastic",
-                         .claim = "the accumulated equivalent plastic strain after three cycles shall match the exact value "
-                         "to 1e-10 relative",
-                         .measured = std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha, .expected = 1e-10, .tolerance = 0.0,
-                         .compare = Compare::at_most, .tolerance_reason = "exact along radial paths (see above)",
-                         .source = "[simo-hughes1998] ε̄_p = ∫|dε_p| in uniaxial stress", .unit = "", .problem = kProblem});
-  test::record_data(kProblem, "02_cyclic",
-                    {{"kind", "plot"},
-                     {"title", "Cyclic uniaxial loading, ±1 % (plane-stress point)"},
-                     {"xlabel", "log strain ε"},
-                     {"ylabel", "τ₁₁ (MPa)"},
-                     {"xscale", "linear"},
-                     {"yscale", "linear"},
-                     {"series", {mu::series("exact (isotropic hardening)", es, xs), mu::series("material point", es, ss, "dashed")}},
-                     {"caption", "Each reversal yields at minus the stress reached before it: the elastic range grows "
-                                 "as 2κ(ε̄_p)."}});
+                         .claim =
+                             "the accumulated equivalent plastic strain after three cycles shall match the exact value "
+                             "to 1e-10 relative",
+                         .measured = std::abs(drv.history.eq_plastic_strain - exact.alpha) / exact.alpha,
+                         .expected = 1e-10,
+                         .tolerance = 0.0,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "exact along radial paths (see above)",
+                         .source = "[simo-hughes1998] ε̄_p = ∫|dε_p| in uniaxial stress",
+                         .unit = "",
+                         .problem = kProblem});
+  test::record_data(
+      kProblem, "02_cyclic",
+      {{"kind", "plot"},
+       {"title", "Cyclic uniaxial loading, ±1 % (plane-stress point)"},
+       {"xlabel", "log strain ε"},
+       {"ylabel", "τ₁₁ (MPa)"},
+       {"xscale", "linear"},
+       {"yscale", "linear"},
+       {"series", {mu::series("exact (isotropic hardening)", es, xs), mu::series("material point", es, ss, "dashed")}},
+       {"caption",
+        "Each reversal yields at minus the stress reached before it: the elastic range grows "
+        "as 2κ(ε̄_p)."}});
 }
 
 // A plane-stress plate (quarter model: symmetry planes at x = 0 and y = 0) pulled at
@@ -259,27 +287,41 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
       // Reaction: nominal stress τ / λ₁ (λ₁ = eᵉ), times the lateral stretches' area change.
       worst_reaction = std::max(worst_reaction, std::abs(reaction - tau * std::exp(-e)) / sy);
       const double ep = e - s_exact / E;
-      worst_lateral = std::max(worst_lateral, std::abs(lat - (-kSteel.elastic.nu * s_exact / E - 0.5 * ep)) / std::abs(e));
+      worst_lateral =
+          std::max(worst_lateral, std::abs(lat - (-kSteel.elastic.nu * s_exact / E - 0.5 * ep)) / std::abs(e));
     }
     es.push_back(e);
     ss.push_back(tau / 1e6);
     rs.push_back(reaction / 1e6);
     xs.push_back(s_exact / 1e6);
   }
-  std::cout << "plate: worst " << worst << " reaction " << worst_reaction << " lateral " << worst_lateral
-            << " final e " << es.back() << " steps " << nsteps << "\n";
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.stress",
-                         .claim = "an MPM plate in plane stress (GIMP, MUSL, cell 2Δx) pulled quasi-statically to 2 % shall "
-                         "reproduce the bilinear curve: mean τ₁₁ within 1 % of σ_y of σ(ε̄₁₁) beyond ε = σ_y/(4E)",
-                         .measured = worst, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "dynamic residue of the finite loading rate (ramp over 20 wave transits, then ε̇ ≈ 1.3/s·…): "
-                         "stress waves of amplitude ≲ ρ c ΔV; the material response itself is exact",
-                         .source = kSource, .unit = "", .problem = kProblem});
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.lateral",
-                         .claim = "the plate's mean lateral log strain shall equal −νσ/E − ε_p/2 to within 1 % of ε₁₁",
-                         .measured = worst_lateral, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
-                         .source = "[simo-hughes1998] J2 flow rule and Hooke's law in uniaxial stress", .unit = "", .problem = kProblem});
+  std::cout << "plate: worst " << worst << " reaction " << worst_reaction << " lateral " << worst_lateral << " final e "
+            << es.back() << " steps " << nsteps << "\n";
+  test::record_gate(Gate{
+      .id = "mpm.uniaxial_j2.plate.stress",
+      .claim = "an MPM plate in plane stress (GIMP, MUSL, cell 2Δx) pulled quasi-statically to 2 % shall "
+               "reproduce the bilinear curve: mean τ₁₁ within 1 % of σ_y of σ(ε̄₁₁) beyond ε = σ_y/(4E)",
+      .measured = worst,
+      .expected = 0.01,
+      .tolerance = 0.0,
+      .compare = Compare::at_most,
+      .tolerance_reason = "dynamic residue of the finite loading rate (ramp over 20 wave transits, then ε̇ ≈ 1.3/s·…): "
+                          "stress waves of amplitude ≲ ρ c ΔV; the material response itself is exact",
+      .source = kSource,
+      .unit = "",
+      .problem = kProblem});
+  test::record_gate(
+      Gate{.id = "mpm.uniaxial_j2.plate.lateral",
+           .claim = "the plate's mean lateral log strain shall equal −νσ/E − ε_p/2 to within 1 % of ε₁₁",
+           .measured = worst_lateral,
+           .expected = 0.01,
+           .tolerance = 0.0,
+           .compare = Compare::at_most,
+           .tolerance_reason =
+               "same dynamic residue as the stress; the plate contracts freely (top edge free, mirror at y = 0)",
+           .source = "[simo-hughes1998] J2 flow rule and Hooke's law in uniaxial stress",
+           .unit = "",
+           .problem = kProblem});
   test::record_data(kProblem, "03_plate_curve",
                     {{"kind", "plot"},
                      {"title", "Plate in uniaxial tension (plane stress MPM) vs bilinear law"},
@@ -287,18 +329,26 @@ TEST(FastMpmUniaxialJ2, PlateInTensionReproducesTheCurve) {
                      {"ylabel", "stress (MPa)"},
                      {"xscale", "linear"},
                      {"yscale", "linear"},
-                     {"series", {mu::series("bilinear law", es, xs), mu::series("mean particle τ₁₁", es, ss, "points"),
-                                 mu::series("end reaction / reference area", es, rs, "dashed")}},
-                     {"caption", "20 × 10 mm quarter plate, 3 mm thick, Δx = 0.5 mm, cell 1 mm, GIMP, MUSL; pulled "
-                                 "end velocity ramped over 20 transits L/c. The reaction is a nominal (first "
-                                 "Piola) stress, τ e^{−ε}."}});
-  test::record_gate(Gate{.id = "mpm.uniaxial_j2.plate.reaction",
-                         .claim = "the force the pulled boundary exerts, over the reference section, shall equal the nominal "
-                         "stress τ₁₁ e^(−ε) of the particles to within 1 % of σ_y",
-                         .measured = worst_reaction, .expected = 0.01, .tolerance = 0.0, .compare = Compare::at_most,
-                         .tolerance_reason = "dynamic residue and the inertia of the boundary nodes; nodes on the symmetry plane count "
-                         "half (their mirror image carries the other half)",
-                         .source = "[simo-hughes1998] equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section", .unit = "", .problem = kProblem});
+                     {"series",
+                      {mu::series("bilinear law", es, xs), mu::series("mean particle τ₁₁", es, ss, "points"),
+                       mu::series("end reaction / reference area", es, rs, "dashed")}},
+                     {"caption",
+                      "20 × 10 mm quarter plate, 3 mm thick, Δx = 0.5 mm, cell 1 mm, GIMP, MUSL; pulled "
+                      "end velocity ramped over 20 transits L/c. The reaction is a nominal (first "
+                      "Piola) stress, τ e^{−ε}."}});
+  test::record_gate(Gate{
+      .id = "mpm.uniaxial_j2.plate.reaction",
+      .claim = "the force the pulled boundary exerts, over the reference section, shall equal the nominal "
+               "stress τ₁₁ e^(−ε) of the particles to within 1 % of σ_y",
+      .measured = worst_reaction,
+      .expected = 0.01,
+      .tolerance = 0.0,
+      .compare = Compare::at_most,
+      .tolerance_reason = "dynamic residue and the inertia of the boundary nodes; nodes on the symmetry plane count "
+                          "half (their mirror image carries the other half)",
+      .source = "[simo-hughes1998] equilibrium of the plate: P₁₁ = τ₁₁/λ₁ on the reference section",
+      .unit = "",
+      .problem = kProblem});
 }
 
 }  // namespace
