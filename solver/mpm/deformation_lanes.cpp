@@ -60,25 +60,24 @@ void velocity_gradient_scalar(DeformationLanes& out, const Stencil<2>* stencil, 
 __attribute__((target("avx512f"))) void velocity_gradient_avx512(DeformationLanes& out, const Stencil<2>* stencil,
                                                                  int n, const Vec<2>* vg, Index row_stride) {
   const __mmask8 six = 0x3f;
-  for (int l = 0; l < kDeformationLanes; ++l) {
-    const Stencil<2>& st = stencil[std::min(l, n - 1)];
+  for (int l = 0; l < n; ++l) {
+    const Stencil<2>& st = stencil[l];
     const std::array<double, 3>&w0 = st.w[0], &d0 = st.dw[0];
     const __m512d w0x2 = _mm512_set_pd(0.0, 0.0, w0[2], w0[2], w0[1], w0[1], w0[0], w0[0]);
     const __m512d d0x2 = _mm512_set_pd(0.0, 0.0, d0[2], d0[2], d0[1], d0[1], d0[0], d0[0]);
     const Index base = st.first[0] + st.first[1] * row_stride;
-    __m128d col0 = _mm_setzero_pd(), col1 = _mm_setzero_pd();
+    __m256d cols = _mm256_setzero_pd();  // L's columns 0 and 1: L00, L10, L01, L11
     for (int j = 0; j < 3; ++j) {
       const __m512d v = _mm512_maskz_loadu_pd(six, vg[base + j * row_stride].data());
       const __m512d gx = _mm512_mul_pd(d0x2, _mm512_set1_pd(st.w[1][j]));
       const __m512d gy = _mm512_mul_pd(_mm512_set1_pd(st.dw[1][j]), w0x2);
       const __m512d c0 = _mm512_mul_pd(v, gx), c1 = _mm512_mul_pd(v, gy);
-      for (int i = 0; i < 3; ++i) {
-        col0 = _mm_add_pd(col0, node_pair(c0, i));
-        col1 = _mm_add_pd(col1, node_pair(c1, i));
-      }
+      for (int i = 0; i < 3; ++i) cols = _mm256_add_pd(cols, node_pairs(c0, c1, i));
     }
-    out.l00[l] = col0[0], out.l10[l] = col0[1], out.l01[l] = col1[0], out.l11[l] = col1[1];
+    out.l00[l] = cols[0], out.l10[l] = cols[1], out.l01[l] = cols[2], out.l11[l] = cols[3];
   }
+  for (int l = n; l < kDeformationLanes; ++l)  // a short group repeats its last particle
+    out.l00[l] = out.l00[n - 1], out.l10[l] = out.l10[n - 1], out.l01[l] = out.l01[n - 1], out.l11[l] = out.l11[n - 1];
 }
 
 // The reference: Simulation<3>::velocity_gradient's sum, L(a, b) += v_a g_b node by node.

@@ -56,19 +56,17 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
     const std::array<double, 3>& x = st.w[0];
     const __m512d wx2 = _mm512_set_pd(0.0, 0.0, x[2], x[2], x[1], x[1], x[0], x[0]);  // node i's in lanes 2i, 2i + 1
     const Index base = st.first[0] + st.first[1] * a.row_stride;
-    __m128d v_pic = _mm_setzero_pd(), dv = _mm_setzero_pd();
-    __m512d w2[3];  // S of the row's node i in lanes 2i, 2i + 1; the remap uses them again
+    __m256d sums = _mm256_setzero_pd();  // Σ S v_new and Σ S (v_new − v): x, y of each
+    __m512d w2[3];                       // S of the row's node i in lanes 2i, 2i + 1; the remap uses them again
     for (int j = 0; j < 3; ++j) {
       const Index row = base + j * a.row_stride;
       w2[j] = _mm512_mul_pd(wx2, _mm512_set1_pd(st.w[1][j]));
       const __m512d vn = _mm512_maskz_loadu_pd(six, a.grid_velocity_new[row].data());
       const __m512d vo = _mm512_maskz_loadu_pd(six, a.grid_velocity[row].data());
       const __m512d c_pic = _mm512_mul_pd(w2[j], vn), c_dv = _mm512_mul_pd(w2[j], _mm512_sub_pd(vn, vo));
-      for (int i = 0; i < 3; ++i) {  // node by node, as the scalar sum
-        v_pic = _mm_add_pd(v_pic, node_pair(c_pic, i));
-        dv = _mm_add_pd(dv, node_pair(c_dv, i));
-      }
+      for (int i = 0; i < 3; ++i) sums = _mm256_add_pd(sums, node_pairs(c_pic, c_dv, i));  // as the scalar sum
     }
+    const __m128d v_pic = _mm256_castpd256_pd128(sums), dv = _mm256_extractf128_pd(sums, 1);
     double* vp = a.velocity[p].data();
     double* up = a.displacement[p].data();
     const __m128d v = _mm_add_pd(_mm_mul_pd(flip, _mm_add_pd(_mm_loadu_pd(vp), dv)), _mm_mul_pd(pic, v_pic));

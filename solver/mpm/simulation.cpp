@@ -34,41 +34,31 @@ namespace {
 bool is_mpm(core::ParticleKind k) { return k == core::ParticleKind::mpm || k == core::ParticleKind::transition; }
 
 // A plastic flow lane l returned into particle p's history, element by element as the
-// scalar law's matrix += adds it (Δε_p is 3×3: its zero entries add +0 too).
+// scalar law's matrix += adds it. The out-of-plane shears are left alone: the law adds +0
+// there to entries that are +0 (every writer of a plane-stress history writes +0 there:
+// the laws' zero-filled increments, the hybrid's fit from PD), which leaves them +0.
 template <int D>
 void add_plastic_increment(ParticleState<D>& state, Index p, const PlaneStressLanes& lanes, int l) {
   MatrixArrays<3, 3>& e = state.plastic_strain;
   e.entry(0, 0)[p] += lanes.d00[l], e.entry(1, 1)[p] += lanes.d11[l], e.entry(2, 2)[p] += lanes.d22[l];
   e.entry(0, 1)[p] += lanes.d01[l], e.entry(1, 0)[p] += lanes.d01[l];
-  e.entry(0, 2)[p] += 0.0, e.entry(1, 2)[p] += 0.0, e.entry(2, 0)[p] += 0.0, e.entry(2, 1)[p] += 0.0;
   state.eq_plastic_strain[p] += lanes.d_alpha[l];
 }
 
-static_assert(kLawLanes == 8, "copy8, consecutive_eight and prefetch_run handle groups of eight");
+static_assert(kLawLanes == 8 && ScatterSchedule<2>::kRunLength == kLawLanes,
+              "copy_run and prefetch_run handle runs of eight, the stress update's groups");
 
-// Eight doubles from one array to another (a lane buffer and a run of eight particles).
-void copy8(double* to, const double* from) { std::memcpy(to, from, kLawLanes * sizeof(double)); }
-
-// True if the group of n particles at k0 in the schedule is eight consecutive
-// particles: their entries are then eight consecutive elements of every array.
-bool consecutive_eight(const std::vector<Index>& order, Index k0, Index n) {
-  if (n != kLawLanes) return false;
-  for (int l = 1; l < kLawLanes; ++l)
-    if (order[k0 + l] != order[k0] + l) return false;
-  return true;
+// The n ≤ 8 doubles of a run from one array to another (a lane buffer and a run of particles).
+__attribute__((always_inline)) inline void copy_run(double* to, const double* from, Index n) {
+  if (n == kLawLanes) return (void)std::memcpy(to, from, kLawLanes * sizeof(double));
+  for (Index l = 0; l < n; ++l) to[l] = from[l];
 }
 
-// Lane l from array[group[l]] for the n particles of a group (a short group repeats its
-// last particle); one copy if they are a run of eight consecutive particles.
-void gather_lanes(double* lanes, const double* array, const Index* group, Index n, bool run) {
-  if (run) return copy8(lanes, array + group[0]);
-  for (int l = 0; l < kLawLanes; ++l) lanes[l] = array[group[std::min<Index>(l, n - 1)]];
-}
-
-// array[group[l]] = lane l for the n particles of a group.
-void scatter_lanes(double* array, const double* lanes, const Index* group, Index n, bool run) {
-  if (run) return copy8(array + group[0], lanes);
-  for (int l = 0; l < n; ++l) array[group[l]] = lanes[l];
+// Lane l from array[p0 + l] for the run of n particles from p0; a short run repeats its
+// last particle in the unused lanes.
+__attribute__((always_inline)) inline void gather_lanes(double* lanes, const double* array, Index p0, Index n) {
+  copy_run(lanes, array + p0, n);
+  for (Index l = n; l < kLawLanes; ++l) lanes[l] = lanes[n - 1];
 }
 
 // Particle p's τ of plane stress (τ₃₃ and the out-of-plane shears zero).
@@ -270,40 +260,46 @@ void Simulation<D>::compute_stencils() {
   }
 }
 
-// GIMP stencils eight particles at a time (gimp_lanes.hpp); a last group of fewer
-// repeats its last particle in the unused lanes. Each group's positions and half-widths
-// are gathered a group ahead (for_each_group_gathered_ahead).
+// GIMP stencils a run of up to eight consecutive particles at a time (gimp_lanes.hpp,
+// ScatterSchedule::runs); a short run repeats its last particle in the unused lanes.
+// Each run's positions and half-widths are gathered a run ahead
+// (for_each_group_gathered_ahead).
 template <int D>
 void Simulation<D>::compute_gimp_stencils(Index& bad) {
+  static_assert(kGimpLanes == ScatterSchedule<D>::kRunLength);
   const std::vector<Index>& order = schedule_.order();
-  const Index na = static_cast<Index>(order.size());
-  const Index groups = (na + kGimpLanes - 1) / kGimpLanes;
+  const std::vector<Index>& runs = schedule_.runs();
+  const Index na = static_cast<Index>(order.size()), groups = static_cast<Index>(runs.size()) - 1;
   struct Inputs {
     double x_rel[D][kGimpLanes], lp[D][kGimpLanes];  // [axis][lane]
   };
   auto gather = [&](Index gi, Inputs& in) {
-    const Index k0 = gi * kGimpLanes;
-    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)  // the group after it
-      prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
+    const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
+    {  // the run after it
+      const Index p = order[std::min(k0 + n, na - 1)];
+      prefetch(particles_.x0, p), prefetch(particles_.u, p), prefetch(state_.half_width, p);
+      prefetch(particles_.x0, p + kGimpLanes - 1), prefetch(particles_.u, p + kGimpLanes - 1);
+      prefetch(state_.half_width, p + kGimpLanes - 1);
+    }
     for (int l = 0; l < kGimpLanes; ++l) {
-      const Index p = order[std::min(k0 + l, na - 1)];
+      const Index p = p0 + std::min<Index>(l, n - 1);
       const Vec<D> x = particles_.position(p) - grid_.node0;
       for (int a = 0; a < D; ++a) in.x_rel[a][l] = x[a], in.lp[a][l] = state_.half_width[p][a];
     }
   };
   auto compute = [&](Index gi, const Inputs& in) {
-    const Index k0 = gi * kGimpLanes;
+    const Index k0 = runs[gi], n = runs[gi + 1] - k0;
     for (int a = 0; a < D; ++a) {
       GimpLanes lanes;
       gimp_lanes(in.x_rel[a], in.lp[a], grid_.h, lanes);
-      for (int l = 0; l < kGimpLanes && k0 + l < na; ++l) {
+      for (int l = 0; l < n; ++l) {
         Stencil<D>& st = stencil_[k0 + l];
         st.first[a] = lanes.first[l];
         for (int n = 0; n < 3; ++n) st.w[a][n] = lanes.w[n][l], st.dw[a][n] = lanes.dw[n][l];
       }
     }
     Index group_bad = kNoParticle;
-    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)
+    for (Index k = k0; k < k0 + n; ++k)
       if (!inside_grid(stencil_[k])) group_bad = std::min(group_bad, order[k]);
     return group_bad;
   };
@@ -525,8 +521,9 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
   throw_if_bad();
 }
 
-// The plane-stress laws in one pass of groups of eight particles in the schedule's
-// order: F, the polar decompositions (polar_lanes.hpp), the law's elastic path
+// The plane-stress laws in one pass of groups of up to eight particles, the schedule's
+// runs of consecutive particles (ScatterSchedule::runs), so a group's entries of each
+// state array are one copy: F, the polar decompositions (polar_lanes.hpp), the law's elastic path
 // (plane_stress_lanes.hpp); the lanes those flag go through polar_log<2> and the
 // law point by point. Nothing is stored between the stages. Each group's inputs (L, F,
 // the plastic state) are gathered a group ahead (for_each_group_gathered_ahead) and
@@ -539,18 +536,17 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
     const std::vector<Index>& order = schedule_.order();
     const Index na = static_cast<Index>(order.size());
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
-    const Index groups = (na + kLawLanes - 1) / kLawLanes;
+    const std::vector<Index>& runs = schedule_.runs();
+    const Index groups = static_cast<Index>(runs.size()) - 1;
     struct Inputs {
-      bool run = false;      // the group is eight consecutive particles (consecutive_eight)
       DeformationLanes def;  // L and F
       PlaneStressLanes law;  // the plastic state (the strain and rotation come from the decomposition)
     };
     auto gather = [&](Index gi, Inputs& in) {
-      const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
-      const bool run = in.run = consecutive_eight(order, k0, n);
+      const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
       const MatrixArrays<3, 3>& ep = state_.plastic_strain;
       {  // the group after it: its particles' state
-        const Index p = order[std::min(k0 + kLawLanes, na - 1)];
+        const Index p = order[std::min(k0 + n, na - 1)];
         const MatrixArrays<2, 2>& F = state_.F;
         prefetch_run(
             p,
@@ -566,28 +562,25 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         const Mat<2> L = velocity_gradient(k0 + std::min<Index>(l, n - 1), vg);
         def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
       }
-      const Index* group = order.data() + k0;
       const MatrixArrays<2, 2>& F = state_.F;
-      gather_lanes(def.f00, F.entry(0, 0), group, n, run), gather_lanes(def.f01, F.entry(0, 1), group, n, run);
-      gather_lanes(def.f10, F.entry(1, 0), group, n, run), gather_lanes(def.f11, F.entry(1, 1), group, n, run);
+      gather_lanes(def.f00, F.entry(0, 0), p0, n), gather_lanes(def.f01, F.entry(0, 1), p0, n);
+      gather_lanes(def.f10, F.entry(1, 0), p0, n), gather_lanes(def.f11, F.entry(1, 1), p0, n);
       PlaneStressLanes& law_in = in.law;
       if (elastic_only) {  // no plastic strain, whatever a history holds (set_plastic_lane)
         for (int l = 0; l < kLawLanes; ++l) set_plastic_lane(law_in, l, Mat<3>::Zero().eval(), true);
       } else {
-        gather_lanes(law_in.p00, ep.entry(0, 0), group, n, run),
-            gather_lanes(law_in.p11, ep.entry(1, 1), group, n, run);
-        gather_lanes(law_in.p01, ep.entry(0, 1), group, n, run),
-            gather_lanes(law_in.p22, ep.entry(2, 2), group, n, run);
+        gather_lanes(law_in.p00, ep.entry(0, 0), p0, n), gather_lanes(law_in.p11, ep.entry(1, 1), p0, n);
+        gather_lanes(law_in.p01, ep.entry(0, 1), p0, n), gather_lanes(law_in.p22, ep.entry(2, 2), p0, n);
       }
       for (int l = 0; l < kLawLanes; ++l) {
-        const Index p = group[std::min<Index>(l, n - 1)];
+        const Index p = p0 + std::min<Index>(l, n - 1);
         const double eq = state_.eq_plastic_strain[p];
         law_in.alpha[l] = eq + hardening_offset(p, eq);
       }
     };
     const core::DuctileFailure& fail = settings_.failure;
     auto compute = [&](Index gi, Inputs& in) {
-      const Index k0 = gi * kLawLanes, n = std::min<Index>(kLawLanes, na - k0);
+      const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
       Index group_bad = kNoParticle;
       DeformationLanes& def = in.def;
       advance_deformation_lanes(def, dt);
@@ -595,12 +588,10 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       const LaneCopy to_polar[] = {
           {polar.f00, def.f00}, {polar.f10, def.f10}, {polar.f01, def.f01}, {polar.f11, def.f11}};
       copy_lanes(to_polar, 4);
-      const bool run = in.run;
-      const Index* group = order.data() + k0;
       MatrixArrays<2, 2>& F = state_.F;
-      scatter_lanes(F.entry(0, 0), def.f00, group, n, run), scatter_lanes(F.entry(1, 0), def.f10, group, n, run);
-      scatter_lanes(F.entry(0, 1), def.f01, group, n, run), scatter_lanes(F.entry(1, 1), def.f11, group, n, run);
-      for (int l = 0; l < n; ++l) stretch_domain(group[l]);
+      copy_run(F.entry(0, 0) + p0, def.f00, n), copy_run(F.entry(1, 0) + p0, def.f10, n);
+      copy_run(F.entry(0, 1) + p0, def.f01, n), copy_run(F.entry(1, 1) + p0, def.f11, n);
+      for (Index p = p0; p < p0 + n; ++p) stretch_domain(p);
       const unsigned polar_by_point = polar_log_lanes(polar);
       PlaneStressLanes& lanes = in.law;
       const LaneCopy to_law[] = {{lanes.l00, polar.l00},
@@ -613,14 +604,14 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       double eps_f[kLawLanes];  // the ductile fracture strain of each lane
       if (fail.enabled)
         fracture_strain_lanes(fail.d0, fail.c, lanes, lanes_needing_fracture_strain(fail, lanes, n), eps_f);
-      bool none_failed = run;
-      for (int l = 0; l < n && none_failed; ++l) none_failed = !state_.failed[order[k0 + l]];
-      if (none_failed && polar_by_point == 0 && law_by_point == 0) {  // the lanes' results, eight at once
-        store_lanes(k0, lanes, eps_f);
+      bool none_failed = true;
+      for (Index p = p0; p < p0 + n && none_failed; ++p) none_failed = !state_.failed[p];
+      if (none_failed && polar_by_point == 0 && law_by_point == 0) {  // the lanes' results, a run at once
+        store_lanes(p0, n, lanes, eps_f);
         return group_bad;
       }
       for (int l = 0; l < n; ++l) {
-        const Index k = k0 + l, p = order[k];
+        const Index p = p0 + l;
         if (state_.failed[p]) continue;  // a failed particle carries no stress (its τ is zero)
         if (polar_by_point >> l & 1u || law_by_point >> l & 1u) {
           PolarLog<2> pl;
@@ -659,37 +650,33 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
   }
 }
 
-// The results of a group of eight consecutive particles the lanes computed (none of
-// them failed, none left to the scalar law) into their state, as the per-lane stores of
-// update_stress_in_lanes make them, the arrays of single values eight at a time.
+// The results of a run of n ≤ 8 particles from p0 the lanes computed (none of them
+// failed, none left to the scalar law) into their state, as the per-lane stores of
+// update_stress_in_lanes make them, the arrays of single values a run at a time.
 template <int D>
-void Simulation<D>::store_lanes(Index k0, const PlaneStressLanes& lanes, const double* eps_f) {
-  const Index p0 = schedule_.order()[k0];
+void Simulation<D>::store_lanes(Index p0, Index n, const PlaneStressLanes& lanes, const double* eps_f) {
   double alpha_before[kLawLanes];
-  copy8(alpha_before, state_.eq_plastic_strain.data() + p0);
-  if (lanes.yielded != 0) {  // add_plastic_increment of the yielded lanes, entry by entry
+  copy_run(alpha_before, state_.eq_plastic_strain.data() + p0, n);
+  const unsigned y = lanes.yielded & ((1u << n) - 1u);  // the run's lanes (the others repeat its last)
+  if (y != 0) {                                         // add_plastic_increment of the yielded lanes, entry by entry
     MatrixArrays<3, 3>& e = state_.plastic_strain;
-    const unsigned y = lanes.yielded;
     auto add = [&](double* to, const double* d) {
-      for (int l = 0; l < kLawLanes; ++l) to[p0 + l] = y >> l & 1u ? to[p0 + l] + d[l] : to[p0 + l];
+      for (Index l = 0; l < n; ++l) to[p0 + l] = y >> l & 1u ? to[p0 + l] + d[l] : to[p0 + l];
     };
-    static constexpr double kZero[kLawLanes] = {};
     add(e.entry(0, 0), lanes.d00), add(e.entry(1, 1), lanes.d11), add(e.entry(2, 2), lanes.d22);
     add(e.entry(0, 1), lanes.d01), add(e.entry(1, 0), lanes.d01);
-    add(e.entry(0, 2), kZero), add(e.entry(1, 2), kZero), add(e.entry(2, 0), kZero), add(e.entry(2, 1), kZero);
     add(state_.eq_plastic_strain.data(), lanes.d_alpha);
   }
   MatrixArrays<3, 3>& tau = state_.kirchhoff;
-  copy8(tau.entry(0, 0) + p0, lanes.k00), copy8(tau.entry(1, 0) + p0, lanes.k10);
-  copy8(tau.entry(0, 1) + p0, lanes.k01), copy8(tau.entry(1, 1) + p0, lanes.k11);
-  copy8(state_.J.data() + p0, lanes.J);
-  copy8(state_.out_of_plane_strain.data() + p0, lanes.out_of_plane);
-  copy8(state_.energy.data() + p0, lanes.energy);
-  for (int l = 0; l < kLawLanes; ++l)
-    state_.dissipation[p0 + l] += lanes.yielded >> l & 1u ? lanes.dissipation[l] : 0.0;
+  copy_run(tau.entry(0, 0) + p0, lanes.k00, n), copy_run(tau.entry(1, 0) + p0, lanes.k10, n);
+  copy_run(tau.entry(0, 1) + p0, lanes.k01, n), copy_run(tau.entry(1, 1) + p0, lanes.k11, n);
+  copy_run(state_.J.data() + p0, lanes.J, n);
+  copy_run(state_.out_of_plane_strain.data() + p0, lanes.out_of_plane, n);
+  copy_run(state_.energy.data() + p0, lanes.energy, n);
+  for (Index l = 0; l < n; ++l) state_.dissipation[p0 + l] += y >> l & 1u ? lanes.dissipation[l] : 0.0;
   const core::DuctileFailure& fail = settings_.failure;
   if (fail.enabled)
-    for (int l = 0; l < kLawLanes; ++l)
+    for (Index l = 0; l < n; ++l)
       apply_ductile_criterion(p0 + l, alpha_before[l], hardening_offset(p0 + l, alpha_before[l]), eps_f[l]);
 }
 

@@ -143,7 +143,7 @@ class Simulation {
   void update_stress(const std::vector<Vec<D>>& grid_velocity, double dt);
   void update_stress_in_lanes(const std::vector<Vec<D>>& grid_velocity, double dt, const PlaneStressLaw& law,
                               Index& bad);
-  void store_lanes(Index k0, const PlaneStressLanes& lanes, const double* eps_f);
+  void store_lanes(Index p0, Index n, const PlaneStressLanes& lanes, const double* eps_f);
   void advance_deformation(Index k, const std::vector<Vec<D>>& grid_velocity, double dt);
   Mat<D> velocity_gradient(Index k, const std::vector<Vec<D>>& grid_velocity) const;
   void stretch_domain(Index p);

@@ -10,16 +10,11 @@
 
 namespace pdmpm::mpm {
 
-// Node i's x, y of a stencil row.
-__attribute__((target("avx512f"), always_inline)) inline __m128d node_pair(__m512d row, int i) {
-  switch (i) {
-    case 0:
-      return __builtin_shufflevector(row, row, 0, 1);
-    case 1:
-      return __builtin_shufflevector(row, row, 2, 3);
-    default:
-      return __builtin_shufflevector(row, row, 4, 5);
-  }
+// Node i's x, y of two rows' products side by side, (a's x, y, b's x, y): one add takes
+// node i into two sums of pairs at once, each lane still summed node by node.
+__attribute__((target("avx512f"), always_inline)) inline __m256d node_pairs(__m512d a, __m512d b, int i) {
+  const __m512i pick = _mm512_set_epi64(0, 0, 0, 0, 9 + 2 * i, 8 + 2 * i, 1 + 2 * i, 2 * i);
+  return _mm512_castpd512_pd256(_mm512_permutex2var_pd(a, pick, b));
 }
 
 // A 3D 3 × 3 × 3 stencil's row of three nodes: their x, y, z are nine doubles; lanes 0–7

@@ -1,8 +1,8 @@
 // The scatter schedule: particles grouped by block of 32 × 4^(D−1) cells in ascending index,
 // same-colour blocks far enough apart that their stencils never share a node, every
 // node summing its particles in the order of a colour-by-colour sweep (so the slab
-// order of the phases changes no bit), and a schedule kept from the last build
-// exactly when a fresh build would give the same.
+// order of the phases changes no bit), the order cut into runs of consecutive particles,
+// and a schedule kept from the last build exactly when a fresh build would give the same.
 #include "solver/mpm/scatter_schedule.hpp"
 
 #include <gtest/gtest.h>
@@ -195,6 +195,45 @@ TEST(MpmScatterSchedule, ALatticeBlockRowIsARunOfConsecutiveIndices) {
   const std::map<Index, int> expected{
       {last, ny - (layers - 1)}, {full, 3 * ny - (layers - 1)}, {last + full, layers - 1}};
   EXPECT_EQ(runs, expected);
+}
+
+// The lane passes' groups: the order cut into runs of at most eight consecutive
+// particles, a run ending early only where the order's indices break (a row's end, a
+// missing particle) — so a lattice with holes costs one short run per break.
+TEST(MpmScatterSchedule, TheOrderIsCutIntoRunsOfAtMostEightConsecutiveParticles) {
+  const int nx = 90, ny = 16;
+  Grid<2> grid{Vec<2>::Zero(), 1.0, IVec<2>(nx / 2 + 1, ny / 2 + 1)};
+  std::vector<Index> particles;
+  std::vector<IVec<2>> cell;
+  for (int y = 0; y < ny; ++y)
+    for (int x = 0; x < nx; ++x)
+      if (!(y >= 5 && y < 9 && x >= 40 && x < 43)) {  // a hole, as the hybrid's PD region leaves
+        particles.push_back(y * nx + x);
+        cell.emplace_back(x / 2, y / 2);
+      }
+  ScatterSchedule<2> s;
+  s.build(grid, particles, cell);
+  const std::vector<Index>&order = s.order(), &runs = s.runs();
+  ASSERT_GE(runs.size(), 2u);
+  EXPECT_EQ(runs.front(), 0);
+  EXPECT_EQ(runs.back(), static_cast<Index>(order.size()));
+  Index expected_runs = 0, segment = 1;  // ⌈length / 8⌉ per maximal segment of consecutive indices
+  for (std::size_t k = 1; k <= order.size(); ++k)
+    if (k < order.size() && order[k] == order[k - 1] + 1) {
+      ++segment;
+    } else {
+      expected_runs += (segment + ScatterSchedule<2>::kRunLength - 1) / ScatterSchedule<2>::kRunLength;
+      segment = 1;
+    }
+  EXPECT_EQ(static_cast<Index>(runs.size()) - 1, expected_runs);
+  for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
+    const Index k0 = runs[r], k1 = runs[r + 1];
+    ASSERT_GE(k1 - k0, 1);
+    ASSERT_LE(k1 - k0, ScatterSchedule<2>::kRunLength);
+    for (Index k = k0 + 1; k < k1; ++k) EXPECT_EQ(order[k], order[k0] + (k - k0)) << "run " << r;
+    if (k1 - k0 < ScatterSchedule<2>::kRunLength && k1 < static_cast<Index>(order.size()))
+      EXPECT_NE(order[k1], order[k1 - 1] + 1) << "run " << r << " ends early without a break";
+  }
 }
 
 TEST(MpmScatterSchedule, KeptScheduleEqualsAFreshBuild) {
