@@ -89,7 +89,7 @@ class ScatterSchedule {
     std::vector<Index>& fill = fill_;
     fill.assign(start_.begin(), start_.end() - 1);
     for (std::size_t k = 0; k < particles.size(); ++k) order_[fill[block[k]]++] = particles[k];
-    split_into_runs();
+    split_into_lane_groups();
     slabs_ = stages_of(1);
     colour_sweep_ = stages_of(nblocks_[D - 1] / 2 + 1);  // one stage: colour by colour
   }
@@ -97,11 +97,15 @@ class ScatterSchedule {
   // The particles in schedule order (block by block); per-step particle data such as
   // the stencils is stored in this order, so the hot loops read it sequentially.
   const std::vector<Index>& order() const { return order_; }
-  // order() cut into runs of at most kRunLength consecutive particles (order[k] − k the
-  // same within a run): the first position of each run, then order().size(). The
-  // lane passes take a run per group, so each array's entries of a group are one copy.
-  static constexpr int kRunLength = 8;
-  const std::vector<Index>& runs() const { return runs_; }
+  // order() cut into the stress update's groups of at most kLaneGroup positions: a run of
+  // consecutive particles (its entries of each state array one copy) where one at least
+  // kShortestRun long starts, else kLaneGroup positions gathered particle by particle.
+  static constexpr int kLaneGroup = 8, kShortestRun = 3;
+  struct LaneGroup {
+    Index begin, size;  // positions begin … begin + size − 1 of order()
+    bool run;           // their particles are order()[begin] … order()[begin] + size − 1
+  };
+  const std::vector<LaneGroup>& lane_groups() const { return lane_groups_; }
   // Changes whenever order() does: data kept in schedule order is valid while it stands.
   std::uint64_t generation() const { return generation_; }
 
@@ -165,20 +169,26 @@ class ScatterSchedule {
     return p;
   }
 
-  // A block row is a run of a lattice row; rows whose length is no multiple of
-  // kRunLength, and particles missing from a row (the hybrid's PD region), end runs
-  // early — each such cut costs one short run, where groups of eight taken regardless
-  // straddled every cut after it (30 % of them on the mid central crack's hybrid).
-  void split_into_runs() {
-    runs_.clear();
+  // A block row is a run of a lattice row, but a row's end, a particle missing (the
+  // hybrid's PD region) and, once a body deforms, a lattice row wandering across a block
+  // boundary cut it: groups of eight positions taken regardless straddle each cut and go
+  // particle by particle (30 % of the groups in the mid central crack's hybrid before the
+  // crack). A run per group instead costs a group with idle lanes per cut, which is what
+  // the lanes' arithmetic costs: after the crack the runs average five particles. Measured
+  // on that hybrid, a particle-by-particle group costs about three times a run's group of
+  // the same lanes, so runs shorter than kShortestRun are packed eight positions at a time.
+  void split_into_lane_groups() {
+    lane_groups_.clear();
     const Index n = static_cast<Index>(order_.size());
     for (Index k = 0; k < n;) {
-      runs_.push_back(k);
       Index length = 1;
-      while (length < kRunLength && k + length < n && order_[k + length] == order_[k] + length) ++length;
+      while (length < kLaneGroup && k + length < n && order_[k + length] == order_[k] + length) ++length;
+      if (length < kShortestRun && k + length < n) length = std::min<Index>(kLaneGroup, n - k);
+      bool run = true;
+      for (Index l = 1; l < length && run; ++l) run = order_[k + l] == order_[k] + l;
+      lane_groups_.push_back({k, length, run});
       k += length;
     }
-    runs_.push_back(n);
   }
 
   int colour_of(Index b) const {
@@ -192,7 +202,8 @@ class ScatterSchedule {
 
   IVec<D> nblocks_ = IVec<D>::Ones();
   std::uint64_t generation_ = 0;
-  std::vector<Index> start_, order_, runs_;
+  std::vector<Index> start_, order_;
+  std::vector<LaneGroup> lane_groups_;
   std::vector<Index> particles_, block_;  // of the last build: the particles and their blocks
   std::vector<Index> fill_;               // scratch of build()
   Phases slabs_, colour_sweep_;

@@ -45,8 +45,8 @@ void add_plastic_increment(ParticleState<D>& state, Index p, const PlaneStressLa
   state.eq_plastic_strain[p] += lanes.d_alpha[l];
 }
 
-static_assert(kLawLanes == 8 && ScatterSchedule<2>::kRunLength == kLawLanes,
-              "copy_run and prefetch_run handle runs of eight, the stress update's groups");
+static_assert(kLawLanes == 8 && ScatterSchedule<2>::kLaneGroup == kLawLanes,
+              "copy_run and prefetch_run handle groups of eight, the stress update's");
 
 // The n ≤ 8 doubles of a run from one array to another (a lane buffer and a run of particles).
 __attribute__((always_inline)) inline void copy_run(double* to, const double* from, Index n) {
@@ -54,11 +54,22 @@ __attribute__((always_inline)) inline void copy_run(double* to, const double* fr
   for (Index l = 0; l < n; ++l) to[l] = from[l];
 }
 
-// Lane l from array[p0 + l] for the run of n particles from p0; a short run repeats its
-// last particle in the unused lanes.
-__attribute__((always_inline)) inline void gather_lanes(double* lanes, const double* array, Index p0, Index n) {
-  copy_run(lanes, array + p0, n);
+// Lane l from array[group[l]] for the n particles of a group (a short group repeats its
+// last particle); one copy if they are a run of consecutive particles.
+__attribute__((always_inline)) inline void gather_lanes(double* lanes, const double* array, const Index* group, Index n,
+                                                        bool run) {
+  if (run)
+    copy_run(lanes, array + group[0], n);
+  else
+    for (Index l = 0; l < n; ++l) lanes[l] = array[group[l]];
   for (Index l = n; l < kLawLanes; ++l) lanes[l] = lanes[n - 1];
+}
+
+// array[group[l]] = lane l for the n particles of a group.
+__attribute__((always_inline)) inline void scatter_lanes(double* array, const double* lanes, const Index* group,
+                                                         Index n, bool run) {
+  if (run) return copy_run(array + group[0], lanes, n);
+  for (Index l = 0; l < n; ++l) array[group[l]] = lanes[l];
 }
 
 // Particle p's τ of plane stress (τ₃₃ and the out-of-plane shears zero).
@@ -240,8 +251,11 @@ void Simulation<D>::compute_stencils() {
       cell[k].setZero();
       continue;
     }
+    // ⌊x/h⌋ clamped to the grid's cells, clamped first: on [0, cells − 1] truncation is the
+    // floor (one conversion where the baseline ISA's floor is a sequence of a dozen), and far-off
+    // values stay in the integer's range.
     for (int a = 0; a < D; ++a)
-      cell[k][a] = std::clamp(static_cast<std::int32_t>(std::floor(xr[a] / grid_.h)), 0, cells[a] - 1);
+      cell[k][a] = static_cast<std::int32_t>(std::clamp(xr[a] / grid_.h, 0.0, static_cast<double>(cells[a] - 1)));
   }
   if (bad == std::numeric_limits<Index>::max()) {
     schedule_.build(grid_, active_, cell);
@@ -260,46 +274,40 @@ void Simulation<D>::compute_stencils() {
   }
 }
 
-// GIMP stencils a run of up to eight consecutive particles at a time (gimp_lanes.hpp,
-// ScatterSchedule::runs); a short run repeats its last particle in the unused lanes.
-// Each run's positions and half-widths are gathered a run ahead
-// (for_each_group_gathered_ahead).
+// GIMP stencils eight particles at a time (gimp_lanes.hpp); a last group of fewer
+// repeats its last particle in the unused lanes. Each group's positions and half-widths
+// are gathered a group ahead (for_each_group_gathered_ahead).
 template <int D>
 void Simulation<D>::compute_gimp_stencils(Index& bad) {
-  static_assert(kGimpLanes == ScatterSchedule<D>::kRunLength);
   const std::vector<Index>& order = schedule_.order();
-  const std::vector<Index>& runs = schedule_.runs();
-  const Index na = static_cast<Index>(order.size()), groups = static_cast<Index>(runs.size()) - 1;
+  const Index na = static_cast<Index>(order.size());
+  const Index groups = (na + kGimpLanes - 1) / kGimpLanes;
   struct Inputs {
     double x_rel[D][kGimpLanes], lp[D][kGimpLanes];  // [axis][lane]
   };
   auto gather = [&](Index gi, Inputs& in) {
-    const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
-    {  // the run after it
-      const Index p = order[std::min(k0 + n, na - 1)];
-      prefetch(particles_.x0, p), prefetch(particles_.u, p), prefetch(state_.half_width, p);
-      prefetch(particles_.x0, p + kGimpLanes - 1), prefetch(particles_.u, p + kGimpLanes - 1);
-      prefetch(state_.half_width, p + kGimpLanes - 1);
-    }
+    const Index k0 = gi * kGimpLanes;
+    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)  // the group after it
+      prefetch_ahead(order, k, particles_.x0, particles_.u, state_.half_width);
     for (int l = 0; l < kGimpLanes; ++l) {
-      const Index p = p0 + std::min<Index>(l, n - 1);
+      const Index p = order[std::min(k0 + l, na - 1)];
       const Vec<D> x = particles_.position(p) - grid_.node0;
       for (int a = 0; a < D; ++a) in.x_rel[a][l] = x[a], in.lp[a][l] = state_.half_width[p][a];
     }
   };
   auto compute = [&](Index gi, const Inputs& in) {
-    const Index k0 = runs[gi], n = runs[gi + 1] - k0;
+    const Index k0 = gi * kGimpLanes;
     for (int a = 0; a < D; ++a) {
       GimpLanes lanes;
       gimp_lanes(in.x_rel[a], in.lp[a], grid_.h, lanes);
-      for (int l = 0; l < n; ++l) {
+      for (int l = 0; l < kGimpLanes && k0 + l < na; ++l) {
         Stencil<D>& st = stencil_[k0 + l];
         st.first[a] = lanes.first[l];
         for (int n = 0; n < 3; ++n) st.w[a][n] = lanes.w[n][l], st.dw[a][n] = lanes.dw[n][l];
       }
     }
     Index group_bad = kNoParticle;
-    for (Index k = k0; k < k0 + n; ++k)
+    for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)
       if (!inside_grid(stencil_[k])) group_bad = std::min(group_bad, order[k]);
     return group_bad;
   };
@@ -522,8 +530,8 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
 }
 
 // The plane-stress laws in one pass of groups of up to eight particles, the schedule's
-// runs of consecutive particles (ScatterSchedule::runs), so a group's entries of each
-// state array are one copy: F, the polar decompositions (polar_lanes.hpp), the law's elastic path
+// lane groups (ScatterSchedule::lane_groups: mostly runs of consecutive particles, whose
+// entries of each state array are one copy): F, the polar decompositions (polar_lanes.hpp), the law's elastic path
 // (plane_stress_lanes.hpp); the lanes those flag go through polar_log<2> and the
 // law point by point. Nothing is stored between the stages. Each group's inputs (L, F,
 // the plastic state) are gathered a group ahead (for_each_group_gathered_ahead) and
@@ -536,14 +544,14 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
     const std::vector<Index>& order = schedule_.order();
     const Index na = static_cast<Index>(order.size());
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
-    const std::vector<Index>& runs = schedule_.runs();
-    const Index groups = static_cast<Index>(runs.size()) - 1;
+    const auto& lane_groups = schedule_.lane_groups();
+    const Index groups = static_cast<Index>(lane_groups.size());
     struct Inputs {
       DeformationLanes def;  // L and F
       PlaneStressLanes law;  // the plastic state (the strain and rotation come from the decomposition)
     };
     auto gather = [&](Index gi, Inputs& in) {
-      const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
+      const auto [k0, n, run] = lane_groups[gi];
       const MatrixArrays<3, 3>& ep = state_.plastic_strain;
       {  // the group after it: its particles' state
         const Index p = order[std::min(k0 + n, na - 1)];
@@ -562,25 +570,29 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         const Mat<2> L = velocity_gradient(k0 + std::min<Index>(l, n - 1), vg);
         def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
       }
+      const Index* group = order.data() + k0;
       const MatrixArrays<2, 2>& F = state_.F;
-      gather_lanes(def.f00, F.entry(0, 0), p0, n), gather_lanes(def.f01, F.entry(0, 1), p0, n);
-      gather_lanes(def.f10, F.entry(1, 0), p0, n), gather_lanes(def.f11, F.entry(1, 1), p0, n);
+      gather_lanes(def.f00, F.entry(0, 0), group, n, run), gather_lanes(def.f01, F.entry(0, 1), group, n, run);
+      gather_lanes(def.f10, F.entry(1, 0), group, n, run), gather_lanes(def.f11, F.entry(1, 1), group, n, run);
       PlaneStressLanes& law_in = in.law;
       if (elastic_only) {  // no plastic strain, whatever a history holds (set_plastic_lane)
         for (int l = 0; l < kLawLanes; ++l) set_plastic_lane(law_in, l, Mat<3>::Zero().eval(), true);
       } else {
-        gather_lanes(law_in.p00, ep.entry(0, 0), p0, n), gather_lanes(law_in.p11, ep.entry(1, 1), p0, n);
-        gather_lanes(law_in.p01, ep.entry(0, 1), p0, n), gather_lanes(law_in.p22, ep.entry(2, 2), p0, n);
+        gather_lanes(law_in.p00, ep.entry(0, 0), group, n, run),
+            gather_lanes(law_in.p11, ep.entry(1, 1), group, n, run);
+        gather_lanes(law_in.p01, ep.entry(0, 1), group, n, run),
+            gather_lanes(law_in.p22, ep.entry(2, 2), group, n, run);
       }
       for (int l = 0; l < kLawLanes; ++l) {
-        const Index p = p0 + std::min<Index>(l, n - 1);
+        const Index p = group[std::min<Index>(l, n - 1)];
         const double eq = state_.eq_plastic_strain[p];
         law_in.alpha[l] = eq + hardening_offset(p, eq);
       }
     };
     const core::DuctileFailure& fail = settings_.failure;
     auto compute = [&](Index gi, Inputs& in) {
-      const Index k0 = runs[gi], n = runs[gi + 1] - k0, p0 = order[k0];
+      const auto [k0, n, run] = lane_groups[gi];
+      const Index* group = order.data() + k0;
       Index group_bad = kNoParticle;
       DeformationLanes& def = in.def;
       advance_deformation_lanes(def, dt);
@@ -589,9 +601,9 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
           {polar.f00, def.f00}, {polar.f10, def.f10}, {polar.f01, def.f01}, {polar.f11, def.f11}};
       copy_lanes(to_polar, 4);
       MatrixArrays<2, 2>& F = state_.F;
-      copy_run(F.entry(0, 0) + p0, def.f00, n), copy_run(F.entry(1, 0) + p0, def.f10, n);
-      copy_run(F.entry(0, 1) + p0, def.f01, n), copy_run(F.entry(1, 1) + p0, def.f11, n);
-      for (Index p = p0; p < p0 + n; ++p) stretch_domain(p);
+      scatter_lanes(F.entry(0, 0), def.f00, group, n, run), scatter_lanes(F.entry(1, 0), def.f10, group, n, run);
+      scatter_lanes(F.entry(0, 1), def.f01, group, n, run), scatter_lanes(F.entry(1, 1), def.f11, group, n, run);
+      for (Index l = 0; l < n; ++l) stretch_domain(group[l]);
       const unsigned polar_by_point = polar_log_lanes(polar);
       PlaneStressLanes& lanes = in.law;
       const LaneCopy to_law[] = {{lanes.l00, polar.l00},
@@ -604,14 +616,14 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
       double eps_f[kLawLanes];  // the ductile fracture strain of each lane
       if (fail.enabled)
         fracture_strain_lanes(fail.d0, fail.c, lanes, lanes_needing_fracture_strain(fail, lanes, n), eps_f);
-      bool none_failed = true;
-      for (Index p = p0; p < p0 + n && none_failed; ++p) none_failed = !state_.failed[p];
+      bool none_failed = run;
+      for (Index l = 0; l < n && none_failed; ++l) none_failed = !state_.failed[group[l]];
       if (none_failed && polar_by_point == 0 && law_by_point == 0) {  // the lanes' results, a run at once
-        store_lanes(p0, n, lanes, eps_f);
+        store_lanes(group[0], n, lanes, eps_f);
         return group_bad;
       }
       for (int l = 0; l < n; ++l) {
-        const Index p = p0 + l;
+        const Index p = group[l];
         if (state_.failed[p]) continue;  // a failed particle carries no stress (its τ is zero)
         if (polar_by_point >> l & 1u || law_by_point >> l & 1u) {
           PolarLog<2> pl;

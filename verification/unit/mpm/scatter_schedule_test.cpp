@@ -1,7 +1,7 @@
 // The scatter schedule: particles grouped by block of 32 × 4^(D−1) cells in ascending index,
 // same-colour blocks far enough apart that their stencils never share a node, every
 // node summing its particles in the order of a colour-by-colour sweep (so the slab
-// order of the phases changes no bit), the order cut into runs of consecutive particles,
+// order of the phases changes no bit), the order cut into lane groups (mostly runs of consecutive particles),
 // and a schedule kept from the last build exactly when a fresh build would give the same.
 #include "solver/mpm/scatter_schedule.hpp"
 
@@ -197,43 +197,57 @@ TEST(MpmScatterSchedule, ALatticeBlockRowIsARunOfConsecutiveIndices) {
   EXPECT_EQ(runs, expected);
 }
 
-// The lane passes' groups: the order cut into runs of at most eight consecutive
-// particles, a run ending early only where the order's indices break (a row's end, a
-// missing particle) — so a lattice with holes costs one short run per break.
-TEST(MpmScatterSchedule, TheOrderIsCutIntoRunsOfAtMostEightConsecutiveParticles) {
+// The stress update's groups: the order cut into runs of at most eight consecutive
+// particles where a run of at least three starts, else eight positions gathered particle
+// by particle; together they cover the order once, in order.
+TEST(MpmScatterSchedule, TheOrderIsCutIntoLaneGroupsMostlyRuns) {
+  using S = ScatterSchedule<2>;
   const int nx = 90, ny = 16;
   Grid<2> grid{Vec<2>::Zero(), 1.0, IVec<2>(nx / 2 + 1, ny / 2 + 1)};
   std::vector<Index> particles;
   std::vector<IVec<2>> cell;
   for (int y = 0; y < ny; ++y)
-    for (int x = 0; x < nx; ++x)
-      if (!(y >= 5 && y < 9 && x >= 40 && x < 43)) {  // a hole, as the hybrid's PD region leaves
+    for (int x = 0; x < nx; ++x) {
+      const bool hole = y >= 5 && y < 9 && x >= 40 && x < 43;  // as the hybrid's PD region leaves
+      const bool sparse = y == 12 && x % 2 == 1;               // runs of one
+      if (!hole && !sparse) {
         particles.push_back(y * nx + x);
         cell.emplace_back(x / 2, y / 2);
       }
-  ScatterSchedule<2> s;
-  s.build(grid, particles, cell);
-  const std::vector<Index>&order = s.order(), &runs = s.runs();
-  ASSERT_GE(runs.size(), 2u);
-  EXPECT_EQ(runs.front(), 0);
-  EXPECT_EQ(runs.back(), static_cast<Index>(order.size()));
-  Index expected_runs = 0, segment = 1;  // ⌈length / 8⌉ per maximal segment of consecutive indices
-  for (std::size_t k = 1; k <= order.size(); ++k)
-    if (k < order.size() && order[k] == order[k - 1] + 1) {
-      ++segment;
-    } else {
-      expected_runs += (segment + ScatterSchedule<2>::kRunLength - 1) / ScatterSchedule<2>::kRunLength;
-      segment = 1;
     }
-  EXPECT_EQ(static_cast<Index>(runs.size()) - 1, expected_runs);
-  for (std::size_t r = 0; r + 1 < runs.size(); ++r) {
-    const Index k0 = runs[r], k1 = runs[r + 1];
-    ASSERT_GE(k1 - k0, 1);
-    ASSERT_LE(k1 - k0, ScatterSchedule<2>::kRunLength);
-    for (Index k = k0 + 1; k < k1; ++k) EXPECT_EQ(order[k], order[k0] + (k - k0)) << "run " << r;
-    if (k1 - k0 < ScatterSchedule<2>::kRunLength && k1 < static_cast<Index>(order.size()))
-      EXPECT_NE(order[k1], order[k1 - 1] + 1) << "run " << r << " ends early without a break";
+  S s;
+  s.build(grid, particles, cell);
+  const std::vector<Index>& order = s.order();
+  auto run_from = [&](Index k) {  // the run of consecutive particles starting at position k, capped
+    Index length = 1;
+    while (length < S::kLaneGroup && k + length < static_cast<Index>(order.size()) &&
+           order[k + length] == order[k] + length)
+      ++length;
+    return length;
+  };
+  Index next = 0, runs = 0, gathered = 0;
+  for (const S::LaneGroup& g : s.lane_groups()) {
+    EXPECT_EQ(g.begin, next) << "groups cover the order in order";
+    ASSERT_GE(g.size, 1);
+    ASSERT_LE(g.size, S::kLaneGroup);
+    bool consecutive = true;
+    for (Index l = 1; l < g.size; ++l) consecutive = consecutive && order[g.begin + l] == order[g.begin] + l;
+    EXPECT_EQ(g.run, consecutive);
+    const Index run = run_from(g.begin);
+    if (run >= S::kShortestRun) {
+      EXPECT_TRUE(g.run);
+      EXPECT_EQ(g.size, run) << "a run is taken whole (up to eight)";
+    } else if (g.begin + g.size < static_cast<Index>(order.size())) {
+      EXPECT_EQ(g.size, S::kLaneGroup) << "short runs are packed eight positions at a time";
+    }
+    runs += g.run && g.size == S::kLaneGroup;
+    gathered += !g.run;
+    next = g.begin + g.size;
   }
+  EXPECT_EQ(next, static_cast<Index>(order.size()));
+  EXPECT_GT(runs, 100);    // the lattice rows
+  EXPECT_GT(gathered, 0);  // the sparse row
+  EXPECT_LT(gathered, runs);
 }
 
 TEST(MpmScatterSchedule, KeptScheduleEqualsAFreshBuild) {
