@@ -174,19 +174,19 @@ class ScatterSchedule {
   // boundary cut it: groups of eight positions taken regardless straddle each cut and go
   // particle by particle (30 % of the groups in the mid central crack's hybrid before the
   // crack). A run per group instead costs a group with idle lanes per cut, which is what
-  // the lanes' arithmetic costs: after the crack the runs average five particles. Measured
-  // on that hybrid, a particle-by-particle group costs about three times a run's group of
-  // the same lanes, so runs shorter than kShortestRun are packed eight positions at a time.
+  // the lanes' arithmetic costs: after the crack the runs average five particles. From the
+  // stress phase of that hybrid before and after taking runs (solver/mpm/README.md), a
+  // particle-by-particle group costs about three times a run's group of the same lanes, so
+  // runs shorter than kShortestRun are packed eight positions at a time.
   void split_into_lane_groups() {
     lane_groups_.clear();
     const Index n = static_cast<Index>(order_.size());
     for (Index k = 0; k < n;) {
       Index length = 1;
       while (length < kLaneGroup && k + length < n && order_[k + length] == order_[k] + length) ++length;
-      if (length < kShortestRun && k + length < n) length = std::min<Index>(kLaneGroup, n - k);
-      bool run = true;
-      for (Index l = 1; l < length && run; ++l) run = order_[k + l] == order_[k] + l;
-      lane_groups_.push_back({k, length, run});
+      const bool packed = length < kShortestRun && k + length < n;  // so longer than its run
+      if (packed) length = std::min<Index>(kLaneGroup, n - k);
+      lane_groups_.push_back({k, length, !packed});
       k += length;
     }
   }
