@@ -47,20 +47,27 @@ double bond_plastic_extension(const Mat<3>& eps_p, const Vec<D>& xi) {
 
 double axial_plastic_strain(const Mat<3>& eps_p) { return (eps_p(0, 0) + eps_p(1, 1) - 2.0 * eps_p(2, 2)) / 6.0; }
 
+namespace {
+
+// The deviator whose bond extensions fit `values` best with weights w (normal equations
+// over the deviatoric basis), and the share of Σ w v² the fit leaves. Empty when the bonds
+// do not determine the deviator.
 template <int D>
-std::optional<Mat<3>> fit_plastic_strain(const std::vector<Vec<D>>& xi, const std::vector<double>& w,
-                                         const std::vector<double>& p, double q_p) {
+std::optional<std::pair<Mat<3>, double>> fit_deviator(const std::vector<Vec<D>>& xi, const std::vector<double>& w,
+                                                      const std::vector<double>& values) {
   const std::vector<Mat<3>> basis = deviatoric_basis<D>();
   const int n = static_cast<int>(basis.size());
   Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd rhs = Eigen::VectorXd::Zero(n);
   double scale = 0.0;  // for the rank test: Σ w |ξ|² (the entries' size)
+  double total = 0.0;  // Σ w v²
   for (std::size_t k = 0; k < xi.size(); ++k) {
     Eigen::VectorXd g(n);
     for (int a = 0; a < n; ++a) g[a] = bond_plastic_extension<D>(basis[a], xi[k]);
     A += w[k] * g * g.transpose();
-    rhs += w[k] * p[k] * g;
+    rhs += w[k] * values[k] * g;
     scale += w[k] * xi[k].squaredNorm();
+    total += w[k] * values[k] * values[k];
   }
   // Rank: the smallest eigenvalue of the normal matrix against its scale; 1e-10 is far
   // above round-off (1e-16 relative) and far below any set of two non-parallel bonds
@@ -68,8 +75,21 @@ std::optional<Mat<3>> fit_plastic_strain(const std::vector<Vec<D>>& xi, const st
   Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
   if (!(scale > 0.0) || eig.eigenvalues().minCoeff() <= 1e-10 * scale) return std::nullopt;
   const Eigen::VectorXd c = A.ldlt().solve(rhs);
-  Mat<3> eps = Mat<3>::Zero();
-  for (int a = 0; a < n; ++a) eps += c[a] * basis[a];
+  Mat<3> dev = Mat<3>::Zero();
+  for (int a = 0; a < n; ++a) dev += c[a] * basis[a];
+  // Least squares: Σ w (v − g·c)² = Σ w v² − c·rhs.
+  const double left = total > 0.0 ? std::clamp((total - c.dot(rhs)) / total, 0.0, 1.0) : 0.0;
+  return std::pair{dev, left};
+}
+
+}  // namespace
+
+template <int D>
+std::optional<Mat<3>> fit_plastic_strain(const std::vector<Vec<D>>& xi, const std::vector<double>& w,
+                                         const std::vector<double>& p, double q_p) {
+  const auto fit = fit_deviator<D>(xi, w, p);
+  if (!fit) return std::nullopt;
+  Mat<3> eps = fit->first;
   if constexpr (D == 2) {
     // The in-plane trace and ε_zz from q_p = ½ tr ε_p,2 and tr ε_p = 0.
     eps(0, 0) += q_p;
@@ -119,21 +139,43 @@ void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& mo
   model.set_particle_plastic_state(i, model.axial_plastic_for(theta, q_e), eq_plastic);
 }
 
+namespace {
+
+// The deviatoric elastic extensions e − γθ_c|ξ| − p of particle i's live bonds, with their
+// reference vectors and weights ω V.
 template <int D>
-std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i) {
-  const auto [theta, theta_c] = model.current_dilatations(sys, i);
-  std::vector<Vec<D>> xi;
-  std::vector<double> w, elastic;
+void live_elastic_extensions(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i, double theta_c,
+                             std::vector<Vec<D>>& xi, std::vector<double>& w, std::vector<double>& elastic) {
   sys.for_each_live_bond(i, [&](BondIndex b, Index j, int k) {
     xi.push_back(sys.table.xi[k]);
     w.push_back(sys.table.weight[k] * sys.particles.volume[j]);
     elastic.push_back(deviatoric_extension<D>(sys, model.split_factor() * theta_c, i, j, k) -
                       model.plastic_extension(b));
   });
+}
+
+}  // namespace
+
+template <int D>
+std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i) {
+  const auto [theta, theta_c] = model.current_dilatations(sys, i);
+  std::vector<Vec<D>> xi;
+  std::vector<double> w, elastic;
+  live_elastic_extensions<D>(sys, model, i, theta_c, xi, w, elastic);
   const double q_e = model.axial_elastic_for(theta, model.axial_plastic_strain(i));
   const std::optional<Mat<3>> dev = fit_plastic_strain<D>(xi, w, elastic, q_e);
   if (!dev) return std::nullopt;
   return Mat<3>(*dev + model.volumetric_elastic_for(theta, q_e) / 3.0 * Mat<3>::Identity());
+}
+
+template <int D>
+double non_affine_share(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i) {
+  const double theta_c = model.current_dilatations(sys, i).second;
+  std::vector<Vec<D>> xi;
+  std::vector<double> w, elastic;
+  live_elastic_extensions<D>(sys, model, i, theta_c, xi, w, elastic);
+  const auto fit = fit_deviator<D>(xi, w, elastic);
+  return fit ? fit->second : 1.0;
 }
 
 template <int D>
@@ -160,6 +202,8 @@ template void carry_elastic_state_into_pd<2>(const pd::System<2>&, pd::LpsPlasti
 template void carry_elastic_state_into_pd<3>(const pd::System<3>&, pd::LpsPlastic<3>&, Index, const Mat<3>&, double);
 template std::optional<Mat<3>> elastic_strain_from_pd<2>(const pd::System<2>&, const pd::LpsPlastic<2>&, Index);
 template std::optional<Mat<3>> elastic_strain_from_pd<3>(const pd::System<3>&, const pd::LpsPlastic<3>&, Index);
+template double non_affine_share<2>(const pd::System<2>&, const pd::LpsPlastic<2>&, Index);
+template double non_affine_share<3>(const pd::System<3>&, const pd::LpsPlastic<3>&, Index);
 template std::optional<mpm::PointHistory> plastic_state_from_pd<2>(const pd::System<2>&, const pd::LpsPlastic<2>&,
                                                                    Index);
 template std::optional<mpm::PointHistory> plastic_state_from_pd<3>(const pd::System<3>&, const pd::LpsPlastic<3>&,

@@ -61,6 +61,13 @@ void carry_elastic_state_into_pd(const pd::System<D>& sys, pd::LpsPlastic<D>& mo
 template <int D>
 std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i);
 
+// The share of particle i's deviatoric PD elastic energy (α/2 Σ ω V e_e², over its live
+// bonds) that no deformation gradient carries: what the fit above leaves, i.e. what a
+// PD → MPM conversion with elastic_state loses (its weights are that energy's). 0 for an
+// affine state, 1 when the live bonds do not determine the deviator.
+template <int D>
+double non_affine_share(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i);
+
 // PD → MPM: particle i's plastic state fitted over its live bonds, with its ε̄_p. Empty
 // when its live bonds do not determine the deviator (the caller decides what to carry).
 template <int D>

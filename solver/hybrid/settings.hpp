@@ -45,12 +45,17 @@ struct Settings {
   PlasticTransfer plastic_transfer = PlasticTransfer::strain;
   RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
   int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
+  // A shrink reverts a PD particle only if at most this share of its deviatoric PD elastic
+  // energy is non-affine (hybrid::non_affine_share): the part one deformation gradient cannot
+  // carry, which its return to the grid would lose. 1: the paper's rule, every particle
+  // beyond l_con reverts (project decision; the paper is silent on the energy of a conversion).
+  double revert_residual = 1.0;
   CrackTipSettings tips;
   // Particles with a bond cut before the run (a pre-crack) start PD with a region of
   // R_pd around them: an MPM grid cannot carry a cut (project decision, the paper is silent).
   bool precrack_starts_pd = true;
-  // Measure the energy each conversion adds (conversion_energy()): one extra PD
-  // evaluation in every step that converts particles. Diagnostics and tests.
+  // Measure the energy each conversion adds (conversion_energy()): up to three extra PD
+  // evaluations in every step in which bonds break or particles fail. Diagnostics and tests.
   bool audit_conversions = false;
 
   // Throws InputError naming the key (hybrid.…) in `file`.

@@ -6,6 +6,7 @@
 
 #include "solver/core/error.hpp"
 #include "solver/hybrid/conversion.hpp"
+#include "solver/hybrid/plastic_state_transfer.hpp"
 #include "solver/pd/damage.hpp"
 
 namespace pdmpm::hybrid {
@@ -103,14 +104,16 @@ void Simulation<D>::step(double dt, bool energy) {
   lap(seconds_.pd);  // the boundary conditions and ghosts are the PD body's, not region management
 
   const std::int64_t converted = events_.to_pd + events_.to_mpm;
+  last_conversion_jump_ = 0.0;
   manage_regions();
   lap(seconds_.regions);
   const bool audit = settings_.audit_conversions && events_.to_pd + events_.to_mpm != converted;
   evaluate_forces(t1, energy || audit);
   if (audit) {
-    const double after = internal_energy(), jump = after - energy_before_conversion_;
-    conversion_energy_ += jump;
-    if (after > 0.0) largest_conversion_jump_ = std::max(largest_conversion_jump_, std::abs(jump) / after);
+    const double after = internal_energy();
+    if (after > 0.0)
+      largest_jump_with_breaks_ =
+          std::max(largest_jump_with_breaks_, std::abs(after - energy_before_conversion_) / after);
   }
   clock = omp_get_wtime();
   pd_.kick(0.5 * dt);
@@ -180,8 +183,12 @@ void Simulation<D>::manage_regions() {
   const bool may_shrink = settings_.mode == Mode::expand_shrink;
   if (failed.empty() && last_breaks_.empty()) return;
   const std::vector<ParticleKind> before = kind;
-  if (settings_.audit_conversions)
-    energy_before_conversion_ = (pd_.movers().empty() ? 0.0 : pd_.probe_internal_energy()) + mpm_.energies().strain;
+  const std::int64_t converted = events_.to_pd + events_.to_mpm;
+  double before_alone = 0.0;
+  if (settings_.audit_conversions) {
+    energy_before_conversion_ = probed_strain_energy(true);
+    before_alone = probed_strain_energy(false);
+  }
 
   if (!failed.empty()) {
     onset<D>(map_, failed, kind, removed_);
@@ -202,10 +209,21 @@ void Simulation<D>::manage_regions() {
     if (!tips_.empty()) {
       std::vector<Vec<D>> at;
       for (const auto& tip : tips_) at.push_back(tip.position);
-      if (!shrink<D>(map_, at, damaged_pd_particles(), kind, removed_).empty()) ++events_.shrinks;
+      if (!shrink<D>(map_, at, particles_that_stay_pd(before), kind, removed_).empty()) ++events_.shrinks;
     }
   }
   convert(before);
+  if (settings_.audit_conversions && events_.to_pd + events_.to_mpm != converted) {
+    const double after = probed_strain_energy(false), jump = after - before_alone;
+    conversion_energy_ += jump;
+    last_conversion_jump_ = after > 0.0 ? std::abs(jump) / after : 0.0;
+    largest_conversion_jump_ = std::max(largest_conversion_jump_, last_conversion_jump_);
+  }
+}
+
+template <int D>
+double Simulation<D>::probed_strain_energy(bool allow_breaks) {
+  return (pd_.movers().empty() ? 0.0 : pd_.probe_internal_energy(allow_breaks)) + mpm_.energies().strain;
 }
 
 // Converts every particle whose kind differs from `before` (conversion.hpp), then
@@ -240,11 +258,16 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
   mpm_.refresh_active();
 }
 
-// No healing: a PD particle with a broken bond stays PD, so both faces of a crack
-// keep their broken bonds and never meet on one grid.
+// The PD particles a shrink must not revert. Every damaged one — no healing: both faces
+// of a crack keep their broken bonds and never meet on one grid. With revert_residual < 1
+// also every one that was PD when the step began whose elastic state one F would carry too
+// poorly (a conversion would lose its non-affine part). The expansion's new PD particles
+// are not converted yet: reverting them costs nothing.
 template <int D>
-std::vector<std::uint8_t> Simulation<D>::damaged_pd_particles() const {
+std::vector<std::uint8_t> Simulation<D>::particles_that_stay_pd(const std::vector<ParticleKind>& before) const {
   const auto& sys = pd_.system();
+  const auto* plastic = dynamic_cast<const pd::LpsPlastic<D>*>(&pd_.model());
+  const bool bound = settings_.revert_residual < 1.0 && plastic;
   std::vector<std::uint8_t> keep(static_cast<std::size_t>(sys.n_real()), 0);
   for (Index i = 0; i < sys.n_real(); ++i) {
     if (sys.particles.kind[i] != ParticleKind::pd) continue;
@@ -253,6 +276,8 @@ std::vector<std::uint8_t> Simulation<D>::damaged_pd_particles() const {
         keep[i] = 1;
         break;
       }
+    if (!keep[i] && bound && before[i] == ParticleKind::pd)
+      keep[i] = non_affine_share<D>(sys, *plastic, i) > settings_.revert_residual;
   }
   return keep;
 }
@@ -362,6 +387,8 @@ void Simulation<D>::checkpoint(core::StateArchive& a) {
   a.sync("hybrid/energy_before_conversion", energy_before_conversion_);
   a.sync("hybrid/conversion_energy", conversion_energy_);
   a.sync("hybrid/largest_conversion_jump", largest_conversion_jump_);
+  a.sync("hybrid/largest_jump_with_breaks", largest_jump_with_breaks_);
+  a.sync("hybrid/last_conversion_jump", last_conversion_jump_);
 }
 
 template class Simulation<2>;

@@ -122,17 +122,25 @@ class Simulation {
   double transition_pd_energy() const;
   // Energy added by conversions since the start (J; with settings.audit_conversions,
   // else 0): at each converting step the strain energy of the body at tⁿ⁺¹ after the
-  // conversions minus before them (kinetic energy does not change: v is carried).
+  // conversions minus before them, with the bonds as they are (both evaluations break
+  // none; kinetic energy does not change: v is carried).
   double conversion_energy() const { return conversion_energy_; }
-  // The largest jump of one step's conversions relative to the body's internal energy then.
+  // The jump of the last step's conversions relative to the body's strain energy after
+  // them (0 if it converted nothing), and the largest so far.
+  double last_conversion_jump() const { return last_conversion_jump_; }
   double largest_conversion_jump() const { return largest_conversion_jump_; }
+  // The same with the bonds the step's evaluation breaks: a particle turned PD can bring
+  // bonds stretched past the critical stretch, which break at once.
+  double largest_jump_with_breaks() const { return largest_jump_with_breaks_; }
 
  private:
   void manage_regions();
   void convert(const std::vector<core::ParticleKind>& before);
   void evaluate_forces(double t, bool energy);
   std::vector<Index> bonds_broken_by_last_evaluation() const;
-  std::vector<std::uint8_t> damaged_pd_particles() const;
+  // The body's strain energy now, probing PD without committing (conversion audit).
+  double probed_strain_energy(bool allow_breaks);
+  std::vector<std::uint8_t> particles_that_stay_pd(const std::vector<core::ParticleKind>& before) const;
 
   pd::Simulation<D>& pd_;
   mpm::Simulation<D>& mpm_;
@@ -148,8 +156,9 @@ class Simulation {
   std::int64_t base_steps_ = 0, steps_ = 0, pd_particle_steps_ = 0, mpm_particle_steps_ = 0;
   Events events_;
   PhaseSeconds seconds_;
-  double energy_before_conversion_ = 0.0;  // audit: strain energy before this step's conversions
-  double conversion_energy_ = 0.0, largest_conversion_jump_ = 0.0;
+  double energy_before_conversion_ = 0.0;  // audit: strain energy before this step's conversions, breaks allowed
+  double conversion_energy_ = 0.0, last_conversion_jump_ = 0.0, largest_conversion_jump_ = 0.0,
+         largest_jump_with_breaks_ = 0.0;
 };
 
 }  // namespace pdmpm::hybrid

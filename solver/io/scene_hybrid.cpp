@@ -55,6 +55,9 @@ void read_hybrid(const TomlReader& t, Scene& s) {
     if (*v < 1 || *v > 1000000) t.fail("shrink_every", "must be an integer in [1, 1000000]");
     h.shrink_every = static_cast<int>(*v);
   }
+  number("revert_residual", h.revert_residual);
+  if (h.revert_residual < 1.0 && s.model != "lps_plastic")
+    t.fail("revert_residual", "needs [model] type = \"lps_plastic\" (it bounds the plastic model's elastic state)");
   h.precrack_starts_pd = t.boolean("precrack_starts_pd", true);
   h.audit_conversions = t.boolean("audit_conversions", false);
   if (auto tips = t.optional_table("tips")) {

@@ -48,18 +48,18 @@ void Simulation<D>::external_forces(double t) {
 }
 
 template <int D>
-double Simulation<D>::probe_internal_energy() {
+double Simulation<D>::probe_internal_energy(bool allow_breaks) {
   const std::int64_t sides = broken_sides_;
-  internal_forces(true);
+  internal_forces(true, allow_breaks);
   reject();
   broken_sides_ = sides;
   return internal_energy();
 }
 
 template <int D>
-void Simulation<D>::internal_forces(bool energy) {
+void Simulation<D>::internal_forces(bool energy, bool allow_breaks) {
   ForceRequest req;
-  req.break_bonds = forcing_.breaking.enabled;
+  req.break_bonds = forcing_.breaking.enabled && allow_breaks;
   req.critical_stretch = forcing_.breaking.critical_stretch;
   req.break_after_force = forcing_.breaking.after_force;
   req.energy = energy ? &energy_ : nullptr;

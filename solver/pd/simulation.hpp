@@ -64,8 +64,8 @@ class Simulation {
   // External force density b at time (or load factor) t: body force, tractions, indenter.
   void external_forces(double t);
   // Internal force density f (model + contact) of the owners, breaking bonds if
-  // the run asks; with `energy`, also the strain energy density of each owner.
-  void internal_forces(bool energy);
+  // the run asks and `allow_breaks`; with `energy`, also the strain energy density of each owner.
+  void internal_forces(bool energy, bool allow_breaks = true);
   void forces(double t, bool energy) {
     external_forces(t);
     internal_forces(energy);
@@ -88,7 +88,8 @@ class Simulation {
 
   // Strain energy of the current displacements, committing nothing: an evaluation
   // whose breaks and plastic flow are dropped (the next evaluation makes them again).
-  double probe_internal_energy();
+  // Without `allow_breaks` no bond breaks in it: the energy of the bonds as they are.
+  double probe_internal_energy(bool allow_breaks = true);
 
   // Its state for a checkpoint (core/state_archive.hpp): bond flags, the model's and
   // contact's state, the counters; not the particle store, which it borrows.

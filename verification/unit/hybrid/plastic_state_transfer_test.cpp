@@ -196,5 +196,39 @@ TEST(PlasticStateTransfer, ElasticStateTransferReadsBackTheElasticStrainAtFinite
   elastic_state_round_trip<3>(core::Setting::solid3d);
 }
 
+// The share of a particle's deviatoric elastic energy that no F carries (what a PD → MPM
+// conversion with elastic_state loses): ≈ 0 for an affine state at small strain; for an
+// affine state plus a bending field across the family, the bending's share; 1 when the
+// bonds do not determine the deviator.
+template <int D>
+void non_affine_share_of(core::Setting setting) {
+  test::PlasticBlockSpec spec;
+  spec.setting = setting;
+  test::PlasticBlock<D> block(spec);
+  Mat<D> H = Mat<D>::Zero();
+  H(0, 0) = 2e-3;
+  H(0, 1) = 1e-3;
+  block.apply_affine(H);
+  // An extension |ξ + Hξ| − |ξ| is |ξ| n·sym(H)·n only to first order: its second-order part
+  // (relative size |H| = 2e-3) is no quadratic form in n, so the share is O(|H|²) = 4e-6 at
+  // most (measured 7e-8 and 8e-8); 1e-6 says "affine" with that margin.
+  EXPECT_LT(non_affine_share<D>(block.sys, block.model, block.centre), 1e-6) << static_cast<int>(setting);
+  // Add u_x = κ y² about the centre: its bond extensions are quadratic in ξ, which no F fits.
+  auto& p = block.sys.particles;
+  const Vec<D> c = p.x0[block.centre];
+  for (Index i = 0; i < p.n_real; ++i) {
+    const double y = p.x0[i][1] - c[1];
+    p.u[i][0] += 1.0 * y * y;
+  }
+  const double share = non_affine_share<D>(block.sys, block.model, block.centre);
+  EXPECT_GT(share, 1e-3) << static_cast<int>(setting);
+  EXPECT_LT(share, 1.0);
+}
+
+TEST(PlasticStateTransfer, NonAffineShareIsZeroForAnAffineStateOnly) {
+  non_affine_share_of<2>(core::Setting::plane_stress);
+  non_affine_share_of<3>(core::Setting::solid3d);
+}
+
 }  // namespace
 }  // namespace pdmpm::hybrid

@@ -36,6 +36,8 @@ TEST(HybridSettings, BadValuesNameTheirKey) {
   expect_rejected([](Settings& s) { s.tips.ridge_fraction = 1.5; }, "hybrid.tips.ridge_fraction");
   expect_rejected([](Settings& s) { s.tips.merge_radius = -3.0; }, "hybrid.tips.merge_radius");
   expect_rejected([](Settings& s) { s.tips.match_radius = 0.0; }, "hybrid.tips.match_radius");
+  expect_rejected([](Settings& s) { s.revert_residual = -0.1; }, "hybrid.revert_residual");
+  expect_rejected([](Settings& s) { s.revert_residual = 1.5; }, "hybrid.revert_residual");
 }
 
 }  // namespace
