@@ -259,7 +259,9 @@ void Simulation<D>::convert(const std::vector<ParticleKind>& before) {
 }
 
 // The PD particles a shrink must not revert. Every damaged one — no healing: both faces
-// of a crack keep their broken bonds and never meet on one grid. With revert_residual < 1
+// of a crack keep their broken bonds and never meet on one grid. Every one a boundary
+// condition holds: PD holds particles, the grid nodes, so a held particle that reverted
+// would move its grip's edge (docs/models/hybrid.md, the edge crack's grips). With revert_residual < 1
 // also every one that was PD when the step began whose elastic state one F would carry too
 // poorly (a conversion would lose its non-affine part). The expansion's new PD particles
 // are not converted yet: reverting them costs nothing.
@@ -276,6 +278,7 @@ std::vector<std::uint8_t> Simulation<D>::particles_that_stay_pd(const std::vecto
         keep[i] = 1;
         break;
       }
+    for (int a = 0; a < D && !keep[i]; ++a) keep[i] = pd_.boundaries().constrained(i, a);
     if (!keep[i] && bound && before[i] == ParticleKind::pd)
       keep[i] = non_affine_share<D>(sys, *plastic, i) > settings_.revert_residual;
   }
