@@ -1,8 +1,9 @@
 // Gates of the adaptive SBPD–MPM hybrid (Noorian et al., adaptive SBPD–MPM §2,
 // docs/models/hybrid.md): its limits (no PD particle: the MPM run; mode pd: the PD
-// run), momentum across the coupling, a yielded particle's state across a
-// conversion, thread invariance with regions moving, and the measurements not yet
-// gated (ghost forces under affine motion, an edge crack against the all-PD run).
+// run), momentum across the coupling and through conversions, a yielded particle's
+// state across a conversion, the energy conversions change, thread invariance with
+// regions moving, an edge crack against the all-PD run, waves across the interface, and
+// what is measured but not gated (the paper coupling's ghost forces, the grips' effect).
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -166,6 +167,21 @@ TEST(FastHybrid, CouplingConservesMomentum) {
                            .problem = kProblem});
 }
 
+// The edge-crack plate: 60 × 30 mm, brittle (critical stretch 0.003, no yield), pre-crack
+// from the left edge to x = 15 mm; `tables` adds its loads. Its regions: R_pd = l_ext =
+// l_con = 2δ, l_crit = δ (the paper's 7δ would cover this small plate).
+test::HybridPlate edge_crack_plate(const std::string& tables) {
+  test::HybridPlate plate;
+  plate.size = {0.06, 0.03};
+  plate.tables = tables;
+  plate.pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n";
+  plate.pd_material_keys = "critical_stretch = 0.003";
+  plate.hardening = "yield_stress = 1e12\ntangent_modulus = 0";
+  return plate;
+}
+const hybrid::RegionRadii kEdgeCrackRadii{
+    .pd_radius = 2.0, .expand_trigger = 1.0, .expand_radius = 2.0, .keep_radius = 2.0};
+
 // An edge-cracked plate, free, whose halves are thrown apart (±12 m/s across the crack's
 // line at t = 0): the crack runs and branches, regions grow and shrink every few steps.
 // Returns the largest momentum drift over 3000 steps relative to Σ m|v|, and the run's
@@ -188,13 +204,8 @@ FreeCrackRun free_crack(hybrid::Coupling coupling, hybrid::PlasticTransfer trans
   settings.coupling = coupling;
   settings.plastic_transfer = transfer;
   settings.audit_conversions = true;
-  settings.radii = {.pd_radius = 2.0, .expand_trigger = 1.0, .expand_radius = 2.0, .keep_radius = 2.0};
-  test::HybridPlate plate;
-  plate.size = {0.06, 0.03};
-  plate.pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n";
-  plate.pd_material_keys = "critical_stretch = 0.003";
-  plate.hardening = "yield_stress = 1e12\ntangent_modulus = 0";
-  test::HybridBody body(settings, plate);
+  settings.radii = kEdgeCrackRadii;
+  test::HybridBody body(settings, edge_crack_plate(""));
   auto& p = body.particles();
   for (Index i = 0; i < p.n_real; ++i) p.v[i] = Vec<2>(0.0, p.x0[i][1] > 0.0155 ? 12.0 : -12.0);
   body.hybrid->start();
@@ -451,7 +462,7 @@ CrackRun run_edge_crack(const EdgeCrack& c) {
   s.plastic_transfer = c.transfer;
   s.audit_conversions = c.audit;
   s.revert_residual = c.revert_residual;
-  s.radii = {.pd_radius = 2.0, .expand_trigger = 1.0, .expand_radius = 2.0, .keep_radius = 2.0};
+  s.radii = kEdgeCrackRadii;
   const std::string v = std::to_string(c.speed) + "*min(t/1e-5, 1)";
   const std::string pull = fmt::format(
       "[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\n"
@@ -459,13 +470,7 @@ CrackRun run_edge_crack(const EdgeCrack& c) {
       "[[boundary]]\nname = \"top\"\nkind = \"velocity\"\n"
       "region = {{ type = \"box\", min = [-1, {:.6g}], max = [1, 1] }}\nvalue = [\"free\", \"{}\"]\n",
       c.grip, v, 0.03 - c.grip, v);
-  test::HybridPlate plate;
-  plate.size = {0.06, 0.03};
-  plate.tables = pull;
-  plate.pd_tables = "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n";
-  plate.pd_material_keys = "critical_stretch = 0.003";
-  plate.hardening = "yield_stress = 1e12\ntangent_modulus = 0";
-  test::HybridBody body(s, plate);
+  test::HybridBody body(s, edge_crack_plate(pull));
   std::vector<Index> grips;
   if (c.pd_grips)
     for (Index i = 0; i < body.particles().n_real; ++i)
