@@ -213,6 +213,7 @@ struct Scene {
   ContactSpec contact;
   std::optional<MpmSpec> mpm;              // set when model = "mpm", and for a hybrid scene
   std::optional<hybrid::Settings> hybrid;  // the [hybrid] table (method hybrid)
+  std::vector<ShapeSpec> initial_pd;       // [hybrid] initial_pd: regions whose particles start PD
 
   TimeSpec time;
   std::vector<BoundarySpec> boundaries;
@@ -265,6 +266,7 @@ void check_grid_boundaries(const Scene& s, const std::string& who);
 void start_hybrid_model(const TomlReader& model, Scene& s);
 void read_hybrid_material(const TomlReader& material, Scene& s);
 void read_hybrid(const TomlReader& table, Scene& s);
+ShapeSpec read_shape(const TomlReader& r, int dim);  // one region shape (scene_parser.cpp)
 void check_hybrid_scene(const Scene& s);
 
 // Reads and validates a scene file; throws InputError on any problem.

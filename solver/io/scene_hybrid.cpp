@@ -58,6 +58,8 @@ void read_hybrid(const TomlReader& t, Scene& s) {
   number("revert_residual", h.revert_residual);
   if (h.revert_residual < 1.0 && s.model != "lps_plastic")
     t.fail("revert_residual", "needs [model] type = \"lps_plastic\" (it bounds the plastic model's elastic state)");
+  if (t.has("initial_pd"))  // one shape or an array of them, as a boundary's region
+    for (const auto& shape : t.table_or_tables("initial_pd")) s.initial_pd.push_back(read_shape(shape, s.dimension));
   h.precrack_starts_pd = t.boolean("precrack_starts_pd", true);
   h.audit_conversions = t.boolean("audit_conversions", false);
   if (auto tips = t.optional_table("tips")) {

@@ -20,6 +20,9 @@ int axis_index(const TomlReader& r, const std::string& key, int dim) {
   r.fail(key, "must be one of " + names + ", got \"" + a + "\"");
 }
 
+}  // namespace
+
+// Declared in scene.hpp: [hybrid] initial_pd reads shapes too.
 ShapeSpec read_shape(const TomlReader& r, int dim) {
   ShapeSpec s;
   s.key = r.path();
@@ -50,6 +53,8 @@ ShapeSpec read_shape(const TomlReader& r, int dim) {
   r.finish();
   return s;
 }
+
+namespace {
 
 void check_expression(const TomlReader& r, const std::string& key, const std::string& text) {
   if (text == "free") return;

@@ -336,7 +336,7 @@ nlohmann::json HybridRun<D>::summary() const {
 template <int D>
 RunResult HybridRun<D>::run() {
   pd_stable_step();
-  h_.start();
+  h_.start(s_.initial_pd);
   choose_time_step();
   start_outputs();
   kinetic_ = h_.kinetic_energy();

@@ -1,6 +1,7 @@
 #include "solver/sim/hybrid_setup.hpp"
 
 #include "solver/core/error.hpp"
+#include "solver/sim/geometry_from_scene.hpp"
 
 namespace pdmpm::sim {
 namespace {
@@ -25,6 +26,13 @@ HybridSetup<D>::HybridSetup(const io::Scene& scene) : pd(build_pd<D>(checked(sce
   // (every real particle's, since any may be carried by the grid).
   set_initial_deformation<D>(pd.initial, *mpm_simulation);
   hybrid_simulation = std::make_unique<hybrid::Simulation<D>>(*pd_simulation, *mpm_simulation, *scene.hybrid);
+  if (!scene.initial_pd.empty()) {
+    const auto& p = pd.system.particles;
+    initial_pd = select_particles<D>(p.x0, p.n_real, make_geometry<D>(scene.initial_pd), scene.spacing);
+    if (initial_pd.empty())
+      throw InputError(scene.file, "hybrid.initial_pd",
+                       "selects no particle (particles sit on lattice sites; check the region against the body)");
+  }
 }
 
 template <int D>

@@ -20,7 +20,7 @@ namespace pdmpm::sim {
 template <int D>
 struct HybridSetup {
   // Throws InputError for what only the particles or the grid reveal (empty body,
-  // empty regions, a boundary box without grid nodes).
+  // empty regions, a boundary box without grid nodes, an initial PD region without particles).
   explicit HybridSetup(const io::Scene& scene);
   HybridSetup(const HybridSetup&) = delete;
   HybridSetup& operator=(const HybridSetup&) = delete;
@@ -30,6 +30,7 @@ struct HybridSetup {
   std::unique_ptr<pd::Simulation<D>> pd_simulation;
   std::unique_ptr<mpm::Simulation<D>> mpm_simulation;  // on pd.system.particles
   std::unique_ptr<hybrid::Simulation<D>> hybrid_simulation;
+  std::vector<Index> initial_pd;  // the particles of [hybrid] initial_pd's regions: they start PD
 };
 
 template <int D>

@@ -18,6 +18,7 @@
 #include "solver/core/error.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/pd/stress.hpp"
+#include "solver/sim/hybrid_setup.hpp"
 #include "solver/sim/run.hpp"
 #include "verification/support/fields_reader.hpp"
 #include "verification/support/hybrid_body.hpp"
@@ -182,6 +183,24 @@ TEST(HybridRun, ExpandShrinkPlateWritesEveryOutput) {
   EXPECT_DOUBLE_EQ(o.last.at("max_speed"), fastest);
   EXPECT_DOUBLE_EQ(o.result.summary["metrics"]["max_speed"].get<double>(), fastest);
   EXPECT_GT(fastest, 1.0);
+}
+
+// [hybrid] initial_pd: the grips' rows start PD (that held ones stay PD through shrinks is
+// checked by the hybrid gates' edge crack with PD grips).
+TEST(HybridRun, InitialPdRegionsStartPd) {
+  const std::string keys =
+      "pd_radius = 1.5\nexpand_trigger = 1\nexpand_radius = 2\nkeep_radius = 2\n"
+      "initial_pd = [{ type = \"box\", min = [0.0, 0.0], max = [0.03, 0.002] },\n"
+      "              { type = \"box\", min = [0.0, 0.018], max = [0.03, 0.02] }]\n";
+  const auto scene = test::hybrid_plate_scene(keys).parse("initial_pd.toml");
+  EXPECT_EQ(scene.initial_pd.size(), 2u);
+  const auto setup = build_hybrid<2>(scene);
+  EXPECT_EQ(setup->initial_pd.size(), 120u);  // two rows of 30 at each edge
+  setup->hybrid_simulation->start(setup->initial_pd);
+  for (const Index i : setup->initial_pd) EXPECT_EQ(setup->pd.system.particles.kind[i], core::ParticleKind::pd);
+  const auto o = run_plate(keys, "initial_pd");
+  ASSERT_EQ(o.result.exit_code, 0) << o.result.message;
+  EXPECT_GE(o.last.at("pd_particles"), 120.0);
 }
 
 TEST(HybridRun, ModePdIsAllPeridynamics) {
