@@ -64,7 +64,8 @@ std::optional<Mat<3>> elastic_strain_from_pd(const pd::System<D>& sys, const pd:
 // The share of particle i's deviatoric PD elastic energy (α/2 Σ ω V e_e², over its live
 // bonds) that no deformation gradient carries: what the fit above leaves, i.e. what a
 // PD → MPM conversion with elastic_state loses (its weights are that energy's). 0 for an
-// affine state, 1 when the live bonds do not determine the deviator.
+// affine state to first order in the strain (a bond's extension is n·ε·n only to first
+// order), 1 when the live bonds do not determine the deviator.
 template <int D>
 double non_affine_share(const pd::System<D>& sys, const pd::LpsPlastic<D>& model, Index i);
 

@@ -197,9 +197,8 @@ TEST(PlasticStateTransfer, ElasticStateTransferReadsBackTheElasticStrainAtFinite
 }
 
 // The share of a particle's deviatoric elastic energy that no F carries (what a PD → MPM
-// conversion with elastic_state loses): ≈ 0 for an affine state at small strain; for an
-// affine state plus a bending field across the family, the bending's share; 1 when the
-// bonds do not determine the deviator.
+// conversion with elastic_state loses): ≈ 0 for an affine state at small strain, a sizeable
+// share once a bending field is added across the family.
 template <int D>
 void non_affine_share_of(core::Setting setting) {
   test::PlasticBlockSpec spec;
@@ -221,8 +220,11 @@ void non_affine_share_of(core::Setting setting) {
     p.u[i][0] += 1.0 * y * y;
   }
   const double share = non_affine_share<D>(block.sys, block.model, block.centre);
-  EXPECT_GT(share, 1e-3) << static_cast<int>(setting);
-  EXPECT_LT(share, 1.0);
+  // κ = 1/m: over a bond of δ ≈ 3 mm the bending's extension κ y² (≤ 1e-5) is of the order
+  // of the affine one (|H| δ ≈ 6e-6), so the share is of order one (measured 0.38 in 2D,
+  // 0.34 in 3D); 0.1 … 0.9 says "a sizeable part, not all" without pinning the lattice sums.
+  EXPECT_GT(share, 0.1) << static_cast<int>(setting);
+  EXPECT_LT(share, 0.9) << static_cast<int>(setting);
 }
 
 TEST(PlasticStateTransfer, NonAffineShareIsZeroForAnAffineStateOnly) {
