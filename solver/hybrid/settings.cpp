@@ -30,6 +30,7 @@ void Settings::validate(const std::string& file) const {
     throw InputError(file, "hybrid.shrink_every", m.str());
   }
   check_range(file, "hybrid.revert_residual", revert_residual, 0.0, 1.0, false, false, "");
+  check_range(file, "hybrid.blend_width", blend_width, 0.0, 100.0, true, false, "(units of δ)");
   const double big = 1e6;
   const std::string dx = "(units of Δx)";
   check_range(file, "hybrid.tips.damage_threshold", tips.damage_threshold, 0.0, 1.0, true, true, "");

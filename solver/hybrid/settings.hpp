@@ -23,9 +23,12 @@ constexpr std::array<EnumName<Mode>, 3> names(Mode) {
 // eq 10). full_state: from their whole family — the bonds to grid particles count in the
 // state and exchange no force — so under an affine motion their force states, and with
 // them the PD particles' forces, are the interior ones (docs/models/hybrid.md, ghost forces).
-enum class Coupling { paper, full_state };
-constexpr std::array<EnumName<Coupling>, 2> names(Coupling) {
-  return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}}};
+// blended: the two energies blended over a band around each region (hybrid/blend_zone.hpp):
+// the grid's stress weighted by 1 − β, each PD force state by its owner's β, whole-family
+// states, so the grid sees no hole (Badia et al. 2008; docs/models/hybrid.md).
+enum class Coupling { paper, full_state, blended };
+constexpr std::array<EnumName<Coupling>, 3> names(Coupling) {
+  return {{{Coupling::paper, "paper"}, {Coupling::full_state, "full_state"}, {Coupling::blended, "blended"}}};
 }
 
 // What an MPM particle turned PD carries of its plastic state (plastic_state_transfer.hpp).
@@ -43,7 +46,10 @@ struct Settings {
   Mode mode = Mode::expand_shrink;
   Coupling coupling = Coupling::paper;
   PlasticTransfer plastic_transfer = PlasticTransfer::strain;
-  RegionRadii radii;     // R_pd, l_crit, l_ext, l_con (δ)
+  RegionRadii radii;  // R_pd, l_crit, l_ext, l_con (δ)
+  // coupling = blended: the band over which β falls from 1 to 0, beyond the grid-moved layer
+  // of one bond reach where β = 1 (δ; project decision, the paper has no blend).
+  double blend_width = 2.0;
   int shrink_every = 1;  // i_crit: look for tips and shrink after every i_crit expansions (paper: 1)
   // A shrink reverts a PD particle only if at most this share of its deviatoric PD elastic
   // energy is non-affine (hybrid::non_affine_share): the part one deformation gradient cannot

@@ -39,7 +39,25 @@ Simulation<D>::Simulation(pd::Simulation<D>& pd, mpm::Simulation<D>& mpm, const 
     throw RunError("hybrid: the PD body and the MPM simulation must share one particle store");
   if (pd.particles().n_ghost() > 0)
     throw RunError("hybrid: symmetry planes are not supported (PD regions are not mirrored)");
-  pd.system().transition_full_state = settings_.coupling == Coupling::full_state;
+  const bool blended = settings_.coupling == Coupling::blended;
+  if (blended && pd.model().name() != "lps_plastic")
+    throw RunError("hybrid: coupling \"blended\" weights lps_plastic's force states; the PD model is " +
+                   pd.model().name());
+  pd.system().transition_full_state = settings_.coupling == Coupling::full_state || blended;
+  pd.system().transition_pairs_active = blended;
+  if (blended) band_ = {.reach = bond_reach(pd.system()), .ramp = settings_.blend_width * horizon_ratio(pd.system())};
+  transition_ball_ = blended ? core::Stencil<D>::build(band_.zone()) : map_.bonds();
+}
+
+template <int D>
+void Simulation<D>::classify_band() {
+  if (settings_.coupling != Coupling::blended) return;
+  auto& p = pd_.particles();
+  classify_blended<D>(map_, band_, p.kind, removed_, blend_beta_);
+  pd_.system().blend_weight = blend_beta_;
+  std::vector<double> grid_weight(blend_beta_.size());
+  for (std::size_t i = 0; i < grid_weight.size(); ++i) grid_weight[i] = 1.0 - blend_beta_[i];
+  mpm_.set_stress_weight(grid_weight);
 }
 
 template <int D>
@@ -64,6 +82,7 @@ void Simulation<D>::start(std::span<const Index> initial_pd) {
       p.kind[i] = ParticleKind::pd;
     }
     seed<D>(map_, cut, p.kind, removed_);
+    classify_band();
   }
   pd_.refresh_kinds();
   mpm_.refresh_active();
@@ -212,6 +231,7 @@ void Simulation<D>::manage_regions() {
       if (!shrink<D>(map_, at, particles_that_stay_pd(before), kind, removed_).empty()) ++events_.shrinks;
     }
   }
+  classify_band();
   convert(before);
   if (settings_.audit_conversions && events_.to_pd + events_.to_mpm != converted) {
     const double after = probed_strain_energy(false), jump = after - before_alone;
@@ -310,7 +330,7 @@ Index Simulation<D>::region_violations() const {
     bad += (k == ParticleKind::removed) != (removed_[i] != 0);
     if (k == ParticleKind::pd || k == ParticleKind::removed) continue;
     bool near_pd = false;
-    for (const auto& off : map_.bonds().offset) {
+    for (const auto& off : transition_ball_.offset) {
       const Index j = map_.find(p.site[i] + off);
       near_pd = near_pd || (j >= 0 && j < p.n_real && p.kind[j] == ParticleKind::pd);
     }
@@ -392,6 +412,7 @@ void Simulation<D>::checkpoint(core::StateArchive& a) {
   a.sync("hybrid/largest_conversion_jump", largest_conversion_jump_);
   a.sync("hybrid/largest_jump_with_breaks", largest_jump_with_breaks_);
   a.sync("hybrid/last_conversion_jump", last_conversion_jump_);
+  classify_band();  // the blended coupling's weights follow from the kinds restored (same kinds when saving)
 }
 
 template class Simulation<2>;

@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "solver/hybrid/crack_tips.hpp"
+#include "solver/hybrid/blend_zone.hpp"
 #include "solver/hybrid/regions.hpp"
 #include "solver/hybrid/settings.hpp"
 #include "solver/mpm/simulation.hpp"
@@ -141,12 +142,18 @@ class Simulation {
   // The body's strain energy now, probing PD without committing (conversion audit).
   double probed_strain_energy(bool allow_breaks);
   std::vector<std::uint8_t> particles_that_stay_pd(const std::vector<core::ParticleKind>& before) const;
+  // coupling = blended: widen the transition set to the band's zone and pass the
+  // weights to both methods (blend_zone.hpp); nothing otherwise.
+  void classify_band();
 
   pd::Simulation<D>& pd_;
   mpm::Simulation<D>& mpm_;
   Settings settings_;
   RegionMap<D> map_;
   std::vector<std::uint8_t> removed_;
+  BlendBand band_;                    // coupling = blended
+  core::Stencil<D> transition_ball_;  // offsets within which a non-PD particle is transition
+  std::vector<double> blend_beta_;    // β per particle (blended)
   std::vector<CrackTip<D>> tips_;
   int next_tip_id_ = 0;
   std::vector<Index> last_breaks_;  // particles with a bond broken by the last evaluation

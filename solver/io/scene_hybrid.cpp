@@ -56,6 +56,9 @@ void read_hybrid(const TomlReader& t, Scene& s) {
     h.shrink_every = static_cast<int>(*v);
   }
   number("revert_residual", h.revert_residual);
+  number("blend_width", h.blend_width);
+  if (h.coupling == hybrid::Coupling::blended && s.model != "lps_plastic")
+    t.fail("coupling", "\"blended\" needs [model] type = \"lps_plastic\" (it weights that model's force states)");
   if (h.revert_residual < 1.0 && s.model != "lps_plastic")
     t.fail("revert_residual", "needs [model] type = \"lps_plastic\" (it bounds the plastic model's elastic state)");
   if (t.has("initial_pd"))  // one shape or an array of them, as a boundary's region

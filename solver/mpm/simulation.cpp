@@ -374,8 +374,8 @@ void Simulation<D>::scatter(Scatter what) {
   const std::vector<Index>& order = schedule_.order();
   if constexpr (D == 2) {
     if (rows()) {  // a stencil row per instruction (scatter_rows.hpp)
-      const ScatterSource2 source{order.data(),        stencil_.data(),          state_.mass.data(),
-                                  particles_.v.data(), particles_.volume.data(), in_plane(state_.kirchhoff),
+      const ScatterSource2 source{order.data(),        stencil_.data(),        state_.mass.data(),
+                                  particles_.v.data(), stress_volume().data(), in_plane(state_.kirchhoff),
                                   ext_force_.data()};
       const ScatterTarget2 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride[1]};
@@ -388,9 +388,8 @@ void Simulation<D>::scatter(Scatter what) {
   }
   if constexpr (D == 3) {
     if (K_ == 3) {  // a stencil row per instruction (scatter_rows.hpp)
-      const ScatterSource3 source{order.data(),        stencil_.data(),          state_.mass.data(),
-                                  particles_.v.data(), particles_.volume.data(), &state_.kirchhoff,
-                                  ext_force_.data()};
+      const ScatterSource3 source{order.data(),           stencil_.data(),   state_.mass.data(), particles_.v.data(),
+                                  stress_volume().data(), &state_.kirchhoff, ext_force_.data()};
       const ScatterTarget3 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride};
       const ScatterFields fields{what.mass, what.momentum, what.forces, external};
@@ -402,10 +401,10 @@ void Simulation<D>::scatter(Scatter what) {
   }
   schedule_.for_each([&](Index k, Index p) {
     prefetch_ahead(order, k, state_.mass, particles_.v);
-    if (what.forces) prefetch_ahead(order, k, particles_.volume, ext_force_);
+    if (what.forces) prefetch_ahead(order, k, stress_volume(), ext_force_);
     const double m = state_.mass[p];
     const Vec<D> mv = m * particles_.v[p];
-    const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
+    const Mat<D> Vtau = stress_volume()[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
     const Vec<D> fe = ext_force_[p];
     // A zero external force adds only ±0 to sums that start at +0: exact to skip (scatter_rows.cpp).
     const bool adds_external = external && !fe.isZero(0.0);
@@ -1063,12 +1062,24 @@ void Simulation<D>::set_state(Index p, const Mat<D>& F, const PointHistory& hist
 }
 
 template <int D>
+void Simulation<D>::set_stress_weight(const std::vector<double>& weight) {
+  if (weight.empty()) {
+    stress_volume_.clear();
+    return;
+  }
+  if (weight.size() < particles_.volume.size()) throw RunError("MPM: one stress weight per particle expected");
+  stress_volume_.resize(particles_.volume.size());
+  for (std::size_t p = 0; p < stress_volume_.size(); ++p) stress_volume_[p] = weight[p] * particles_.volume[p];
+}
+
+template <int D>
 Energies Simulation<D>::energies() const {
   const Index na = static_cast<Index>(active_.size());
   const Vec<3> s = deterministic_sum<Vec<3>>(na, Vec<3>::Zero(), [&](Index k) {
     const Index p = active_[k];
-    return Vec<3>(0.5 * state_.mass[p] * particles_.v[p].squaredNorm(), particles_.volume[p] * state_.energy[p],
-                  particles_.volume[p] * state_.dissipation[p]);
+    const double V = stress_volume()[p];
+    return Vec<3>(0.5 * state_.mass[p] * particles_.v[p].squaredNorm(), V * state_.energy[p],
+                  V * state_.dissipation[p]);
   });
   Energies e;
   e.kinetic = s[0];
@@ -1089,7 +1100,7 @@ double Simulation<D>::pending_boundary_work(double dt) const {
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
     if (!inside_grid(st)) continue;  // the next step reports it
-    const Mat<D> Vtau = particles_.volume[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
+    const Mat<D> Vtau = stress_volume()[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
     for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });
   }
   boundary_.fold(nullptr, &f);

@@ -121,6 +121,9 @@ class Simulation {
   // Re-reads which particles the step integrates (kinds mpm/transition); step() does
   // it itself, so only needed for momentum()/energies() right after kinds changed.
   void refresh_active();
+  // Weights of the particles' stress in the grid's internal force and strain energy, one
+  // per particle (a hybrid's blended coupling: 1 − β, hybrid/blend_zone.hpp); empty: 1.
+  void set_stress_weight(const std::vector<double>& weight);
 
   // Its state for a checkpoint (core/state_archive.hpp): the material points' state,
   // time, step count, work books, this step's failures and reactions; not the
@@ -177,7 +180,11 @@ class Simulation {
   std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
   bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)
   std::vector<Vec<D>> ext_force_;                  // per particle external force this step (N)
-  bool any_external_force_ = false;                // some active particle has one this step
+  std::vector<double> stress_volume_;              // V weighted by set_stress_weight (empty: none set)
+  const std::vector<double>& stress_volume() const {
+    return stress_volume_.empty() ? particles_.volume : stress_volume_;
+  }
+  bool any_external_force_ = false;  // some active particle has one this step
   std::vector<std::vector<Index>> traction_particles_;
   std::vector<Vec<D>> reactions_;
   std::vector<Index> newly_failed_;

@@ -52,8 +52,13 @@ inline bool bond_active(core::ParticleKind a, core::ParticleKind b) {
 // state only (a transition particle's bond to a grid particle, when transition
 // particles keep whole families), or inactive.
 enum class BondRole : std::uint8_t { active, state_only, inactive };
-inline BondRole bond_role(core::ParticleKind a, core::ParticleKind b, bool transition_full_state) {
+// With `transition_pairs` (the hybrid's blended coupling) bonds between two transition
+// particles act too: the band's PD energy is weighted, not cut (hybrid/blend_zone.hpp).
+inline BondRole bond_role(core::ParticleKind a, core::ParticleKind b, bool transition_full_state,
+                          bool transition_pairs = false) {
   if (bond_active(a, b)) return BondRole::active;
+  if (transition_pairs && a == core::ParticleKind::transition && b == core::ParticleKind::transition)
+    return BondRole::active;
   const bool grid_particle = b == core::ParticleKind::mpm || b == core::ParticleKind::transition;
   if (transition_full_state && a == core::ParticleKind::transition && grid_particle) return BondRole::state_only;
   return BondRole::inactive;

@@ -148,15 +148,19 @@ void LpsPlastic<D>::return_map(const System<D>& sys, Index i, const double* eps)
     volumetric_energy_[i] = 0.5 * k_.kappa * theta_[i] * theta_[i];
   }
   scale_[i] = r;
-  particle_rows_[4 * i] = mean_term_[i] * inv_m_[i];
-  particle_rows_[4 * i + 1] = r * k_.B * inv_md_[i];
+  // A hybrid's blended coupling weights the particle's force state, energy and dissipation
+  // by its β (hybrid/blend_zone.hpp); its plastic state is the unweighted one's.
+  const double w = sys.blend_weight.empty() ? 1.0 : sys.blend_weight[i];
+  volumetric_energy_[i] *= w;
+  particle_rows_[4 * i] = w * mean_term_[i] * inv_m_[i];
+  particle_rows_[4 * i + 1] = w * r * k_.B * inv_md_[i];
   particle_rows_[4 * i + 2] = k_.gamma * theta_c_[i];
   sigma_eq_[i] = sigma;
   eq_plastic_.trial[i] = ep_n + dep;
   // The work the return dissipates, Σ t Δp βV: σ̄ Δε̄_p, or σ̄_family² Δε̄_p/σ̄ when the yield
   // reads the live bonds (the forces stay the reference family's).
   dissipation_[i] =
-      p.volume[i] * (live == 1.0 ? sigma_eq_[i] * dep : (sigma > 0.0 ? on_family * on_family * dep / sigma : 0.0));
+      w * p.volume[i] * (live == 1.0 ? sigma_eq_[i] * dep : (sigma > 0.0 ? on_family * on_family * dep / sigma : 0.0));
   // p ← p + (1 − r) ε on every bond of the state; broken and inactive bonds keep theirs. A particle
   // that does not flow keeps p_n, copied back only if an earlier trial changed it.
   if (r == 1.0 && !trial_flowed_[i]) return;

@@ -50,6 +50,11 @@ struct System {
   // A hybrid's transition particles measure their state over their whole family (bonds
   // to grid particles state-only, pd/bond_state.hpp); false: over their active bonds.
   bool transition_full_state = false;
+  // A hybrid's blended coupling (hybrid/blend_zone.hpp): bonds between transition particles
+  // act, and each particle's force state is scaled by its weight β (empty: 1 for all).
+  // lps_plastic only (it scales the particle's force-state rows).
+  bool transition_pairs_active = false;
+  std::vector<double> blend_weight;
   HpdOptions hpd;  // the hybrid model's law and sub-horizon size (solver/pd/hpd.hpp)
 
   double spacing() const { return particles.lattice.spacing; }
@@ -136,7 +141,8 @@ struct System {
       if (!only || (*only)[i]) {
         bool moved = false;
         for (BondIndex b = families.begin(i); b < families.end(i); ++b) {
-          const BondRole role = bond_role(ki, kind(families.neighbor[b]), transition_full_state);
+          const BondRole role =
+              bond_role(ki, kind(families.neighbor[b]), transition_full_state, transition_pairs_active);
           moved = moved || role != bonds.role(b);
           bonds.set_role(b, role);
         }

@@ -123,18 +123,32 @@ double stiffness_over_continuum(const LoadHistory& h, double width) {
 
 TEST(FastHybrid, LoadAgainstDisplacementBesideTheAllPdRun) {
   nlohmann::json rows = nlohmann::json::array();
-  double fine_before_growth = 0.0;
+  double fine_before_growth = 0.0, blended_before_growth = 0.0;
   for (const double dx : {1e-3, 0.5e-3}) {
     const std::string res = dx >= 1e-3 ? "1mm" : "05mm";
     const LoadHistory pd = run({.dx = dx}, "pd_" + res);
-    for (const char* coupling : {"full_state", "paper"}) {
+    for (const std::string coupling : {"full_state", "blended", "paper"}) {
       const LoadHistory h =
           run({.dx = dx, .mode = "expand_shrink", .coupling = coupling}, fmt::format("{}_{}", coupling, res));
       const LoadDeviation d = deviation(h, pd);
       rows.push_back({dx * 1e3, coupling, d.growth_time * 1e6, d.before_growth, d.whole_run});
-      if (dx < 1e-3 && std::string(coupling) == "full_state") fine_before_growth = d.before_growth;
+      if (dx < 1e-3 && coupling == "full_state") fine_before_growth = d.before_growth;
+      if (coupling == "blended") blended_before_growth = std::max(blended_before_growth, d.before_growth);
     }
   }
+  test::record_gate(Gate{.id = "hybrid.agreement.load_before_growth_blended",
+                         .claim = "with the blended coupling (blend_width = 2) and grips of PD particles, the edge "
+                                  "crack's grip load (expand_shrink, Δx = 1 and 0.5 mm) shall stay within 2 % (of the "
+                                  "all-PD run's largest) of the all-PD run's at every sample until the crack grows",
+                         .measured = blended_before_growth,
+                         .expected = 0.02,
+                         .compare = Compare::at_most,
+                         .tolerance_reason = "the issue's 2 % for the load–displacement curve, at both resolutions: "
+                                             "the band takes the grids' hole and the free-edge share of the gap with "
+                                             "it (table 03c)",
+                         .source = kSource,
+                         .unit = "",
+                         .problem = kProblem});
   test::record_gate(Gate{.id = "hybrid.agreement.load_before_growth",
                          .claim = "with grips of PD particles and coupling full_state, the edge crack's grip load "
                                   "(expand_shrink, Δx = 0.5 mm) shall stay within 2 % (of the all-PD run's largest) "
@@ -159,7 +173,9 @@ TEST(FastHybrid, LoadAgainstDisplacementBesideTheAllPdRun) {
        {"rows", rows},
        {"caption",
         "Deviations relative to the all-PD run's largest grip load; both runs pull the same grips of PD "
-        "particles at 0.3 m/s. Gate hybrid.agreement.load_before_growth is the Δx = 0.5 mm full_state row. "
+        "particles at 0.3 m/s. Gate hybrid.agreement.load_before_growth is the Δx = 0.5 mm full_state row, "
+        "hybrid.agreement.load_before_growth_blended the blended rows (its band reaches two bond reaches and 2δ "
+        "beyond every PD particle, so on this small plate it covers most of the body). "
         "Once the crack runs the loads part (the hybrid's crack leads, its load falls first): not met, as "
         "the whole-run opening (table 03b). Table 03d separates the two discretisations' stiffness."}});
 }

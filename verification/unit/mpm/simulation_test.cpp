@@ -78,26 +78,66 @@ TEST(MpmSimulation, BitIdenticalForAnyThreadCount) {
 // The 2D scatter reads the stress in schedule order, a copy the stress update keeps:
 // a stress set from outside between steps (set_deformation_gradient, as a conversion
 // from PD does) must reach the grid at the next step, though the schedule stands.
+// A 20 × 20 mm plane-stress J2 plate at rest (GIMP, MUSL) and its centre particle.
+struct RestingPlate {
+  core::Particles<2> particles = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(0.02, 0.02), 1e-3, 2e-3);
+  Simulation<2> sim{settings(), particles};
+  static Settings<2> settings() {
+    Settings<2> s;
+    s.setting = core::Setting::plane_stress;
+    s.shape = ShapeFunction::gimp;
+    s.scheme = UpdateScheme::musl;
+    s.material = {MaterialModel::j2, {200e9, 0.3, 7800}, {300e6, 2e9}};
+    return s;
+  }
+  Index centre() const {
+    Index c = 0;
+    for (Index p = 0; p < particles.n_real; ++p)
+      if ((particles.x0[p] - Vec<2>(0.01, 0.01)).norm() < (particles.x0[c] - Vec<2>(0.01, 0.01)).norm()) c = p;
+    return c;
+  }
+  double fastest() const {
+    double v = 0.0;
+    for (Index p = 0; p < particles.n_real; ++p) v = std::max(v, particles.v[p].norm());
+    return v;
+  }
+};
+
 TEST(MpmSimulation, AStressSetBetweenStepsReachesTheGrid) {
-  auto particles = mu::box_particles<2>(Vec<2>(0, 0), Vec<2>(0.02, 0.02), 1e-3, 2e-3);
-  Settings<2> s;
-  s.setting = core::Setting::plane_stress;
-  s.shape = ShapeFunction::gimp;
-  s.scheme = UpdateScheme::musl;
-  s.material = {MaterialModel::j2, {200e9, 0.3, 7800}, {300e6, 2e9}};
-  Simulation<2> sim(s, particles);
+  RestingPlate plate;
+  auto& sim = plate.sim;
   const double dt = 1e-8;
   sim.step(dt);  // at rest: no stress anywhere
-  Index centre = 0;
-  for (Index p = 0; p < particles.n_real; ++p)
-    if ((particles.x0[p] - Vec<2>(0.01, 0.01)).norm() < (particles.x0[centre] - Vec<2>(0.01, 0.01)).norm()) centre = p;
+  const Index centre = plate.centre();
   sim.set_deformation_gradient(centre, 1.001 * Mat<2>::Identity());  // a stretched point: 0.2 GPa
   ASSERT_GT(sim.state().kirchhoff.get(centre)(0, 0), 1e8);
   sim.step(dt);
-  double fastest = 0.0;
-  for (Index p = 0; p < particles.n_real; ++p) fastest = std::max(fastest, particles.v[p].norm());
   // Its force on the grid moves its neighbours: ~ V τ ∇S Δt / m ≈ 1e-2 m/s here.
-  EXPECT_GT(fastest, 1e-4);
+  EXPECT_GT(plate.fastest(), 1e-4);
+}
+
+// A hybrid's blended coupling weights each particle's stress (set_stress_weight): a
+// stretched point of weight ½ pushes its neighbours half as hard, stores half the energy,
+// and weight 0 takes it out of the internal force.
+TEST(MpmSimulation, StressWeightScalesAParticlesForceAndEnergy) {
+  auto run = [](double weight, double& strain) {
+    RestingPlate plate;
+    const Index centre = plate.centre();
+    std::vector<double> w(plate.particles.size(), 1.0);
+    w[centre] = weight;
+    plate.sim.set_stress_weight(w);
+    plate.sim.set_deformation_gradient(centre, 1.0005 * Mat<2>::Identity());  // elastic: 0.14 GPa
+    strain = plate.sim.energies().strain;
+    plate.sim.step(1e-8);
+    return plate.fastest();
+  };
+  double e1 = 0.0, e_half = 0.0, e0 = 0.0;
+  const double full = run(1.0, e1), half = run(0.5, e_half), none = run(0.0, e0);
+  EXPECT_GT(full, 1e-4);
+  EXPECT_NEAR(half / full, 0.5, 1e-12);  // the velocities are linear in the one force
+  EXPECT_EQ(none, 0.0);
+  EXPECT_DOUBLE_EQ(e_half, 0.5 * e1);
+  EXPECT_EQ(e0, 0.0);
 }
 
 TEST(MpmSimulation, InvertedParticleStopsTheRunNamingIt) {
