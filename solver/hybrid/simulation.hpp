@@ -6,7 +6,9 @@
 //   transition  a non-PD particle within bond reach of a PD one: integrated by the
 //               grid, and a virtual PD particle whose bonds to PD particles act —
 //               their pair forces enter the grid as particle external forces (the
-//               paper's eq 10) and their reactions act on the PD particles;
+//               paper's eq 10) and their reactions act on the PD particles (with
+//               coupling = blended: every non-PD particle of the band around a region,
+//               blend_zone.hpp, its bonds to other transition particles acting too);
 //   mpm         integrated by the grid only;
 //   removed     failed in MPM (ductile criterion) and taken out of the body.
 //
