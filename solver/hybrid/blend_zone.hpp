@@ -8,7 +8,8 @@
 // over `width` horizons, 0 beyond. Every particle within r_b of one with β > 0 is
 // transition (moved by the grid, in the PD evaluation with its whole family), so each
 // weighted force state is measured over a whole family; under an affine motion the two
-// weighted forces, σ∇β from PD and −σ∇β from the grid, cancel to first order.
+// weighted forces, σ∇β from PD and −σ∇β from the grid, cancel in the continuum limit; on
+// the lattice a fraction of either is left, falling as 1/width.
 //
 // Distances are the regions' (reference configuration, lattice offsets, regions.hpp).
 #include <cstdint>
