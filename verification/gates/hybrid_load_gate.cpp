@@ -27,6 +27,7 @@ const char* kProblem = "hybrid";
 const char* kSource = "[noorian] §2; docs/models/hybrid.md (Load against displacement)";
 constexpr double kHeight = 0.03, kGrip = 1.5e-3, kPull = 0.3;  // m, m, m/s (ramped over 10 µs)
 constexpr double kYoung = 200e9, kThickness = 1e-3;
+constexpr double kGaugeLow = 0.0075, kGaugeHigh = 0.0225;  // extensometer probes' y (m), mid-width
 
 struct Plate {
   double dx = 1e-3;
@@ -58,9 +59,9 @@ io::Scene plate_scene(const Plate& p) {
   std::string t = fmt::format(
       "[[boundary]]\nname = \"bottom\"\nkind = \"velocity\"\nregion = {}\nvalue = [\"free\", \"-{}\"]\n"
       "[[boundary]]\nname = \"top\"\nkind = \"velocity\"\nregion = {}\nvalue = [\"free\", \"{}\"]\n"
-      "[[probe]]\nname = \"lo\"\npoint = [{}, 0.0075]\n[[probe]]\nname = \"hi\"\npoint = [{}, 0.0225]\n"
+      "[[probe]]\nname = \"lo\"\npoint = [{}, {}]\n[[probe]]\nname = \"hi\"\npoint = [{}, {}]\n"
       "[output]\nframes = 2\n",
-      bottom, v, top, v, p.width / 2, p.width / 2);
+      bottom, v, top, v, p.width / 2, kGaugeLow, p.width / 2, kGaugeHigh);
   if (p.cracked) t += "[[precrack]]\nfrom = [-1e-3, 0.0155]\nto = [0.015, 0.0155]\n";
   if (hybrid)
     t += fmt::format(
@@ -118,7 +119,7 @@ double stiffness_over_continuum(const LoadHistory& h, double width) {
   double load = 0.0, extension = 0.0;
   for (std::size_t k = 0; k < h.t.size(); ++k)
     if (h.t[k] >= 1.5e-4) load += h.load[k], extension += h.extension[k];
-  return (load / extension) / (kYoung * kThickness * width / 0.015);
+  return (load / extension) / (kYoung * kThickness * width / (kGaugeHigh - kGaugeLow));
 }
 
 TEST(FastHybrid, LoadAgainstDisplacementBesideTheAllPdRun) {
