@@ -9,7 +9,6 @@
 namespace pdmpm::mpm {
 
 namespace {
-const double kSqrt2over3 = std::sqrt(2.0 / 3.0);
 const double kSqrt3over2 = std::sqrt(1.5);
 }  // namespace
 
@@ -60,17 +59,17 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
       hooke_plane_stress(k.plane_stress_modulus, nu, k.thickness_strain, e00, e11, e01);
   // Spectral coordinates of the in-plane stress in the common eigenbasis of the
   // plane-stress elasticity and the projection P (eigenvalues 1/3, 1, 2).
-  const double a1 = (t00 + t11) / std::sqrt(2.0);
-  const double a2 = (t11 - t00) / std::sqrt(2.0);
+  const double a1 = (t00 + t11) * kInvSqrt2;
+  const double a2 = (t11 - t00) * kInvSqrt2;
   const double a3 = t01;
   const double alpha0 = h.eq_plastic_strain + hardening_offset;
   // φ²(Δγ) = σᵀPσ after the return, f(Δγ) = ½φ² − ⅓ κ²(α₀ + sqrt(2/3) Δγ φ).
-  const double s1 = a1 * a1 / 3.0, s2 = a2 * a2 + 2.0 * a3 * a3;
+  const double s1 = a1 * a1 * kThird, s2 = a2 * a2 + 2.0 * a3 * a3;
   J2Result r;
   {
     // f(0): the elastic check, most points of a body most steps.
     const double kappa = k.yield_stress + H * alpha0;
-    if (0.5 * (s1 + s2) - kappa * kappa / 3.0 <= 0.0) {
+    if (0.5 * (s1 + s2) - kThird * (kappa * kappa) <= 0.0) {
       r.T(0, 0) = t00;
       r.T(1, 1) = t11;
       r.T(0, 1) = r.T(1, 0) = t01;
@@ -83,20 +82,9 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
   }
   const double c1 = k.c1;     // (elastic eigenvalue) × (P eigenvalue), mode 1
   const double c2 = 2.0 * G;  // modes 2 and 3
-  auto phi2 = [&](double dg) {
-    const double d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
-    return s1 * d1 * d1 + s2 * d2 * d2;
-  };
-  // f and df/dΔγ at one Δγ, sharing the reciprocals.
-  auto f = [&](double dg, double& df) {
-    const double d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
-    const double p2 = s1 * d1 * d1 + s2 * d2 * d2, p = std::sqrt(p2);
-    const double dp2 = -2.0 * (c1 * s1 * d1 * d1 * d1 + c2 * s2 * d2 * d2 * d2);
-    const double kappa = k.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
-    const double dp = p > 0.0 ? 0.5 * dp2 / p : 0.0;
-    const double dkappa = H * kSqrt2over3 * (p + dg * dp);
-    df = 0.5 * dp2 - (2.0 / 3.0) * kappa * dkappa;
-    return 0.5 * p2 - kappa * kappa / 3.0;
+  auto f = [&](double dg) {
+    return plane_stress_consistency(dg, s1, s2, c1, c2, k.yield_stress, H, alpha0,
+                                    [](double x) { return std::sqrt(x); });
   };
   // f decreases monotonically in Δγ and is convex (Simo & Hughes 1998 §3.4.2): Newton
   // from the left of the root approaches it from one side. Start at the root of the same
@@ -112,10 +100,10 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
   const double start =
       plane_stress_newton_start(s1, s2, c1, c2, k.yield_stress + H * alpha0, H, [](double x) { return std::sqrt(x); });
   const double dg0 = start > 0.0 && start - start == 0.0 ? start : 0.0;
-  double df = 0.0;
   double lo = 0.0, hi = std::numeric_limits<double>::infinity();
-  double dg = dg0, fv = f(dg0, df);
-  if (fv > 0.0)
+  double dg = dg0;
+  PlaneStressConsistency<double> fv = f(dg0);
+  if (fv.f > 0.0)
     lo = dg0;
   else
     hi = dg0;
@@ -126,13 +114,12 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
   const double kappa_n = std::max(k.yield_stress, k.yield_stress + H * alpha0);
   const double scale = kappa_n * kappa_n;
   for (int it = 0; it < 200; ++it) {
-    if (std::abs(fv) <= 1e-15 * scale || (std::isfinite(hi) && hi - lo <= 1e-16 * hi)) break;
-    double next = dg - fv / df;
+    if (std::abs(fv.f) <= 1e-15 * scale || (std::isfinite(hi) && hi - lo <= 1e-16 * hi)) break;
+    double next = dg - fv.step;
     if (!(next > lo && next < hi)) {
       if (std::isinf(hi)) {  // find an upper end: f(hi) ≤ 0
         hi = 1.0 / c2;
-        double dh = 0.0;
-        while (f(hi, dh) > 0.0) {
+        while (f(hi).f > 0.0) {
           lo = hi;
           hi *= 2.0;
           if (hi > 1e12 / c2) throw RunError("plane-stress return map: no bracket for the consistency parameter");
@@ -141,25 +128,25 @@ J2Result j2_return_plane_stress(const J2Constants& k, const Mat<3>& eps, PointHi
       next = 0.5 * (lo + hi);
     }
     dg = next;
-    fv = f(dg, df);
-    if (fv > 0.0)
+    fv = f(dg);
+    if (fv.f > 0.0)
       lo = dg;
     else
       hi = dg;
   }
-  const double d1 = 1.0 + c1 * dg, d2 = 1.0 + c2 * dg;
-  const double b1 = a1 / d1, b2 = a2 / d2, b3 = a3 / d2;
+  const PlaneStressReciprocals<double> d = plane_stress_reciprocals(dg, c1, c2);
+  const double b1 = a1 * d.r1, b2 = a2 * d.r2, b3 = a3 * d.r2;
   Mat<3> T = Mat<3>::Zero();
-  T(0, 0) = (b1 - b2) / std::sqrt(2.0);
-  T(1, 1) = (b1 + b2) / std::sqrt(2.0);
+  T(0, 0) = (b1 - b2) * kInvSqrt2;
+  T(1, 1) = (b1 + b2) * kInvSqrt2;
   T(0, 1) = T(1, 0) = b3;
   // Δε_p = Δγ P σ (tensor components: the engineering shear 2Δγσ₁₂ halves to Δγσ₁₂).
   Mat<3> d_eps_p = Mat<3>::Zero();
-  d_eps_p(0, 0) = dg * (2.0 * T(0, 0) - T(1, 1)) / 3.0;
-  d_eps_p(1, 1) = dg * (2.0 * T(1, 1) - T(0, 0)) / 3.0;
+  d_eps_p(0, 0) = dg * (2.0 * T(0, 0) - T(1, 1)) * kThird;
+  d_eps_p(1, 1) = dg * (2.0 * T(1, 1) - T(0, 0)) * kThird;
   d_eps_p(0, 1) = d_eps_p(1, 0) = dg * T(0, 1);
   d_eps_p(2, 2) = -(d_eps_p(0, 0) + d_eps_p(1, 1));
-  const double d_alpha = kSqrt2over3 * dg * std::sqrt(phi2(dg));
+  const double d_alpha = kSqrt2over3 * dg * std::sqrt(s1 * d.r1 * d.r1 + s2 * d.r2 * d.r2);
   h.plastic_strain += d_eps_p;
   h.eq_plastic_strain += d_alpha;
   r.T = T;

@@ -16,13 +16,15 @@ double atanh_over_x(double x) { return x < kSeriesLimit ? atanh_over_x_series(x 
 
 // ln of a symmetric positive definite 2×2 matrix U of determinant det_U without
 // dividing by a small eigenvalue gap: with eigenvalues m ± r,
-// ln U = ½ ln(det U) I + q (U − m I), q = (ln(m + r) − ln(m − r))/(2r) = atanh(r/m)/r.
+// ln U = ½ ln(det U) I + q (U − m I), q = (ln(m + r) − ln(m − r))/(2r) = atanh(r/m)/r,
+// both divisions by m as one reciprocal (polar_lanes.cpp: the same operations).
 Mat<2> log_spd2(const Mat<2>& U, double det_U) {
   const double m = 0.5 * (U(0, 0) + U(1, 1));
   const double hd = 0.5 * (U(0, 0) - U(1, 1));
   const double b = 0.5 * (U(0, 1) + U(1, 0));
   const double r = std::sqrt(hd * hd + b * b);
-  const double q = atanh_over_x(r / m) / m;  // r/m < 1 for positive definite U
+  const double inv_m = 1.0 / m;
+  const double q = atanh_over_x(r * inv_m) * inv_m;  // r/m < 1 for positive definite U
   Mat<2> out;
   const double half_log_det = series_half_log(det_U);
   out(0, 0) = half_log_det + q * hd;

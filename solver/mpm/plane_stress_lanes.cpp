@@ -11,10 +11,9 @@ namespace pdmpm::mpm {
 
 namespace {
 
-const double kSqrt2over3 = std::sqrt(2.0 / 3.0);  // as j2_plasticity.cpp has it
-
 // The plane-stress return map of j2_return_plane_stress for the lanes in `run`, each
-// lane on its own iterates: f and f′ at Δγ, Newton steps safeguarded by the bracket
+// lane on its own iterates: f and its Newton step at Δγ (plane_stress_consistency, the
+// scalar code's own function), Newton steps safeguarded by the bracket
 // [lo, hi] that every iterate's sign tightens, bisection when a step leaves it. A lane
 // whose step leaves the bracket while hi is still unknown joins `scalar` (the scalar
 // code would now search for hi). Returns Δγ per lane.
@@ -25,35 +24,29 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
-  const double c1 = law.c1, c2 = 2.0 * law.shear, H = law.hardening, dk = H * kSqrt2over3;
+  const double c1 = law.c1, c2 = 2.0 * law.shear, H = law.hardening;
   const double inf = std::numeric_limits<double>::infinity();
   // j2_return_plane_stress's tolerance, relative to κ_n² = max(σ_y, σ_y + H α₀)².
   const d hardened = law.yield_stress + H * alpha0;
   const d kappa_n = V::select(law.yield_stress < hardened, hardened, d{} + law.yield_stress);
   const d tol = 1e-15 * (kappa_n * kappa_n);
-  auto f = [&](d dg, d& df) {
-    const d d1 = 1.0 / (1.0 + c1 * dg), d2 = 1.0 / (1.0 + c2 * dg);
-    const d p2 = s1 * d1 * d1 + s2 * d2 * d2, p = V::sqrt(p2);
-    const d dp2 = -2.0 * (c1 * s1 * d1 * d1 * d1 + c2 * s2 * d2 * d2 * d2);
-    const d kappa = law.yield_stress + H * (alpha0 + kSqrt2over3 * dg * p);
-    const d dp = V::select(p > 0.0, 0.5 * dp2 / p, d{} + 0.0);
-    const d dkappa = dk * (p + dg * dp);
-    df = 0.5 * dp2 - (2.0 / 3.0) * kappa * dkappa;
-    return 0.5 * p2 - kappa * kappa / 3.0;
+  auto f = [&](d dg) {
+    return plane_stress_consistency(dg, s1, s2, c1, c2, law.yield_stress, H, alpha0, [](d x) { return V::sqrt(x); });
   };
   // j2_return_plane_stress's start and first bracket.
   const d start =
       plane_stress_newton_start(s1, s2, c1, c2, law.yield_stress + H * alpha0, H, [](d x) { return V::sqrt(x); });
   const d dg0 = V::select((start > 0.0) & ((start - start) == 0.0), start, d{} + 0.0);
-  d df, dg = dg0;
-  d fv = f(dg, df);
+  d dg = dg0;
+  PlaneStressConsistency<d> e = f(dg);
+  d fv = e.f, step = e.step;
   d lo = V::select(fv > 0.0, dg0, d{} + 0.0), hi = V::select(fv > 0.0, d{} + inf, dg0);
   m active = run;
   for (int it = 0; it < 200; ++it) {
     const d abs_f = V::select(fv < 0.0, -fv, fv);
     const m hi_finite = (hi - hi) == 0.0;
     active &= ~((abs_f <= tol) | (hi_finite & (hi - lo <= 1e-16 * hi)));
-    d next = dg - fv / df;
+    d next = dg - step;
     const m outside = ~((next > lo) & (next < hi));
     const m unbracketed = active & outside & (hi == inf);
     scalar |= unbracketed;
@@ -61,9 +54,8 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
     if (V::bits(active) == 0) break;
     next = V::select(outside, 0.5 * (lo + hi), next);
     dg = V::select(active, next, dg);
-    d df_new;
-    const d f_new = f(dg, df_new);
-    fv = V::select(active, f_new, fv), df = V::select(active, df_new, df);
+    const PlaneStressConsistency<d> e_new = f(dg);
+    fv = V::select(active, e_new.f, fv), step = V::select(active, e_new.step, step);
     const m up = fv > 0.0;
     lo = V::select(active & up, dg, lo), hi = V::select(active & ~up, dg, hi);
   }
@@ -76,7 +68,7 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
   using d = typename V::d;
   using m = typename V::m;
   const double C = law.modulus, nu = law.nu, k = law.thickness_strain;
-  const double sqrt2 = std::sqrt(2.0), c1 = law.c1, c2 = 2.0 * law.shear, oop_per_trace = -nu / law.youngs;
+  const double c1 = law.c1, c2 = 2.0 * law.shear, oop_per_trace = -nu / law.youngs;
   unsigned by_law = 0;
   in.yielded = 0;
   for (int c0 = 0; c0 < kLawLanes; c0 += W) {
@@ -89,10 +81,10 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
     const d t00 = C * ((1.0 - nu) * e00 + nu * tr), t11 = C * ((1.0 - nu) * e11 + nu * tr);
     const d t01 = C * (1.0 - nu) * e01;
     // The yield check of j2_return_plane_stress in its spectral coordinates.
-    const d a1 = (t00 + t11) / sqrt2, a2 = (t11 - t00) / sqrt2;
-    const d s1 = a1 * a1 / 3.0, s2 = a2 * a2 + 2.0 * t01 * t01;
+    const d a1 = (t00 + t11) * kInvSqrt2, a2 = (t11 - t00) * kInvSqrt2;
+    const d s1 = a1 * a1 * kThird, s2 = a2 * a2 + 2.0 * t01 * t01;
     const d kappa = law.yield_stress + law.hardening * alpha;
-    const d f0 = 0.5 * (s1 + s2) - kappa * kappa / 3.0;
+    const d f0 = 0.5 * (s1 + s2) - kThird * (kappa * kappa);
     const m elastic = f0 <= 0.0, yielding = (f0 > 0.0) & ((f0 - f0) == 0.0);
     m scalar = ~(elastic | yielding);  // not finite
     d T00 = t00, T11 = t11, T01 = t01, out_of_plane = k * tr + p22;
@@ -105,12 +97,12 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
       const d dg = consistency_parameter<W>(law, yielding, s1, s2, alpha, scalar);
       const m ret = yielding & ~scalar;
       // The returned stress and the plastic flow Δε_p = Δγ P σ.
-      const d b1 = a1 / (1.0 + c1 * dg), b2 = a2 / (1.0 + c2 * dg), b3 = t01 / (1.0 + c2 * dg);
-      const d r00 = (b1 - b2) / sqrt2, r11 = (b1 + b2) / sqrt2, r01 = b3;
-      const d d00 = dg * (2.0 * r00 - r11) / 3.0, d11 = dg * (2.0 * r11 - r00) / 3.0, d01 = dg * r01;
+      const PlaneStressReciprocals<d> i = plane_stress_reciprocals(dg, c1, c2);
+      const d b1 = a1 * i.r1, b2 = a2 * i.r2, b3 = t01 * i.r2;
+      const d r00 = (b1 - b2) * kInvSqrt2, r11 = (b1 + b2) * kInvSqrt2, r01 = b3;
+      const d d00 = dg * (2.0 * r00 - r11) * kThird, d11 = dg * (2.0 * r11 - r00) * kThird, d01 = dg * r01;
       const d d22 = -(d00 + d11);
-      const d i1 = 1.0 / (1.0 + c1 * dg), i2 = 1.0 / (1.0 + c2 * dg);
-      const d d_alpha = kSqrt2over3 * dg * V::sqrt(s1 * i1 * i1 + s2 * i2 * i2);
+      const d d_alpha = kSqrt2over3 * dg * V::sqrt(s1 * i.r1 * i.r1 + s2 * i.r2 * i.r2);
       const d n00 = p00 + d00, n11 = p11 + d11, n01 = p01 + d01, n22 = p22 + d22;
       // T : Δε_p summed as Eigen sums the 3×3 product (T₃₃ = 0 times Δε_p,33 last).
       const d dissipation = ((r00 * d00 + r11 * d11) + (r01 * d01 + r01 * d01)) + 0.0 * d22;

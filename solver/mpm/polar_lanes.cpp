@@ -29,8 +29,8 @@ __attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in
     // ln U = ½ ln(det U) I + q (U − m I), q = atanh(r/m)/r, by the series of log_spd2.
     const d mean = 0.5 * (U00 + U11), hd = 0.5 * (U00 - U11), off = 0.5 * (U01 + U10);
     const d r = V::sqrt(hd * hd + off * off);
-    const d x = r / mean, y = x * x;
-    const d q = atanh_over_x_series(y) / mean;
+    const d inv_mean = 1.0 / mean, x = r * inv_mean, y = x * x;
+    const d q = atanh_over_x_series(y) * inv_mean;
     const m fine = (det > 0.0) & (x < kSeriesLimit);
     // ½ ln det U by series_half_log: the series where it holds, else the library.
     const d z = half_log_argument(det), by_series = half_log_series(z);

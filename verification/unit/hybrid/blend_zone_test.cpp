@@ -47,8 +47,10 @@ TEST(ClassifyBlended, KindsAndWeightsFollowTheDistanceToTheNearestPdParticle) {
   const Vec<2> centre(20.0, 20.0);
   for (Index i = 0; i < b.p.n_real; ++i)
     if ((b.p.x0[i] - centre).norm() <= 4.0) b.kind[i] = ParticleKind::pd;
-  b.removed[b.map.find(IVec<2>(20, 29))] = 1;  // a removed particle keeps its kind byte out of the band
-  b.kind[b.map.find(IVec<2>(20, 29))] = ParticleKind::removed;
+  const Index gone = b.map.find(IVec<2>(20, 29));  // a removed particle keeps its kind byte out of the band
+  ASSERT_GE(gone, 0);
+  b.removed[static_cast<std::size_t>(gone)] = 1;
+  b.kind[static_cast<std::size_t>(gone)] = ParticleKind::removed;
   std::vector<double> beta;
   classify_blended<2>(b.map, band, b.kind, b.removed, beta);
   Index transition = 0, checked = 0;
