@@ -529,9 +529,11 @@ void read_hardening(const TomlReader& m, Scene& s) {
 
 std::vector<std::string> output_field_names(const Scene& s) {
   if (s.method == Method::mpm) return mpm_field_names();
-  // method: 0 pd, 1 mpm, 2 transition, 3 removed; von Mises from PD or the grid, by method.
-  if (s.method == Method::hybrid) return {"method", "displacement", "velocity", "damage", "von_mises"};
-  std::vector<std::string> names{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
+  // hybrid: method 0 pd, 1 mpm, 2 transition, 3 removed; the stress measures and ε̄_p from PD
+  // or the grid, by method (hybrid_run.cpp).
+  std::vector<std::string> names = s.method == Method::hybrid
+      ? std::vector<std::string>{"method", "displacement", "velocity", "damage", "stress", "von_mises"}
+      : std::vector<std::string>{"displacement", "velocity", "damage", "dilatation", "stress", "von_mises"};
   if (plastic_pd_model(s)) names.insert(names.end(), {"triaxiality", "eq_plastic_strain"});
   return names;
 }

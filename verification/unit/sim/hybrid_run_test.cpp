@@ -59,7 +59,9 @@ TEST(HybridScene, DefaultsAndKeys) {
   EXPECT_TRUE(k.hybrid->audit_conversions);
   EXPECT_EQ(k.hybrid->tips.damage_threshold, 0.3);
   EXPECT_EQ(k.hybrid->tips.match_radius, 2.5);
-  EXPECT_EQ(k.output.fields, (std::vector<std::string>{"method", "displacement", "velocity", "damage", "von_mises"}));
+  EXPECT_EQ(k.output.fields,
+            (std::vector<std::string>{"method", "displacement", "velocity", "damage", "stress", "von_mises",
+                                      "triaxiality", "eq_plastic_strain"}));
 
   // lps goes with MPM's linear elastic law.
   auto elastic = test::hybrid_plate_scene("");
@@ -308,6 +310,28 @@ TEST(HybridRun, AffineInitialDisplacementStrainsBothMethods) {
   // and divided by J, differs from small-strain Hooke by O(|H|) = 1e-6 relative.
   EXPECT_LT(worst_grid, 1e-5);
   EXPECT_GT(smallest_pd, 0.1 * vm);  // strained (an unstrained particle would show 0)
+  // The stress field is the one von Mises is taken of, by method: the grid's Cauchy stress on
+  // grid particles (Hooke's, to the same 1e-5), the PD model's on PD particles; no yield yet.
+  const auto stress = fields.read(first, "stress"), eps_p = fields.read(first, "eq_plastic_strain");
+  const auto triaxiality = fields.read(first, "triaxiality");
+  ASSERT_EQ(stress.size(), 6 * method.size());
+  ASSERT_EQ(eps_p.size(), method.size());
+  ASSERT_EQ(triaxiality.size(), method.size());
+  double worst_hooke = 0.0, worst_measure = 0.0;
+  for (std::size_t i = 0; i < method.size(); ++i) {
+    pd::Tensor6 s6;
+    std::copy(stress.begin() + 6 * i, stress.begin() + 6 * i + 6, s6.begin());
+    if (method[i] == 1.0)
+      for (int c = 0; c < 6; ++c) worst_hooke = std::max(worst_hooke, std::abs(s6[c] - hooke[c]) / vm);
+    // The written measures are of the written tensor (the PD model's or the grid's alike).
+    worst_measure = std::max({worst_measure, std::abs(pd::von_mises(s6) - von_mises[i]) / vm,
+                              std::abs(pd::triaxiality(s6) - triaxiality[i])});
+    EXPECT_EQ(eps_p[i], 0.0) << i;
+  }
+  EXPECT_LT(worst_hooke, 1e-5);
+  // The grid's von Mises and triaxiality come from its Kirchhoff stress, the tensor from τ/J:
+  // the same stress through other roundings.
+  EXPECT_LT(worst_measure, 1e-12);
   RecordProperty("worst_grid_von_mises", fmt::format("{:.3e}", worst_grid));
   RecordProperty("smallest_pd_von_mises_over_hooke", fmt::format("{:.3e}", smallest_pd / vm));
 }
