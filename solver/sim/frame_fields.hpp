@@ -36,6 +36,20 @@ std::vector<double> scalar_field(Index n, F&& value) {
   return out;
 }
 
+// A symmetric 3×3 stress as a field's six components, xx yy zz xy yz xz (pd::Tensor6's order).
+inline pd::Tensor6 tensor6_of(const Mat<3>& s) { return {s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(1, 2), s(0, 2)}; }
+
+// value(i) for i < n, a pd::Tensor6 each, for FieldKind::tensor6.
+template <class F>
+std::vector<double> tensor6_field(Index n, F&& value) {
+  std::vector<double> out(static_cast<std::size_t>(n) * 6);
+  for (Index i = 0; i < n; ++i) {
+    const pd::Tensor6 t = value(i);
+    std::copy(t.begin(), t.end(), out.begin() + 6 * i);
+  }
+  return out;
+}
+
 // Per real particle: the PD model's own stress where it has one (plastic models),
 // else the deformation-gradient stress (Hooke's law of the non-local strain).
 template <int D>

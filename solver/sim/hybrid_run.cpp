@@ -246,36 +246,26 @@ void HybridRun<D>::frame(std::int64_t step, double t) {
     fields.push_back({"velocity", io::FieldKind::vector, vector_field<D>(n, [&](Index i) { return p_.v[i]; })});
   if (wants("damage")) fields.push_back({"damage", io::FieldKind::scalar, pd::local_damage(s_.pd.system)});
   // PD particles: the PD model's stress and ε̄_p; the grid's particles (and removed ones): MPM's.
-  auto by_method = [&](Index i) { return p_.kind[i] == core::ParticleKind::pd; };
+  auto is_pd = [&](Index i) { return p_.kind[i] == core::ParticleKind::pd; };
   if (wants("stress") || wants("von_mises") || wants("triaxiality")) {
     const auto sigma = pd_stresses<D>(s_.pd.system, *s_.pd.model);
-    if (wants("stress")) {
-      std::vector<double> flat(static_cast<std::size_t>(n) * 6);
-      for (Index i = 0; i < n; ++i) {
-        if (by_method(i)) {
-          std::copy(sigma[i].begin(), sigma[i].end(), flat.begin() + 6 * i);
-          continue;
-        }
-        const Mat<3> c = h_.mpm().state().cauchy(i);
-        const double grid[6] = {c(0, 0), c(1, 1), c(2, 2), c(0, 1), c(1, 2), c(0, 2)};  // xx yy zz xy yz xz
-        std::copy(grid, grid + 6, flat.begin() + 6 * i);
-      }
-      fields.push_back({"stress", io::FieldKind::tensor6, flat});
-    }
+    if (wants("stress"))
+      fields.push_back({"stress", io::FieldKind::tensor6, tensor6_field(n, [&](Index i) {
+                          return is_pd(i) ? sigma[i] : tensor6_of(h_.mpm().state().cauchy(i));
+                        })});
     if (wants("von_mises"))
       fields.push_back({"von_mises", io::FieldKind::scalar, scalar_field(n, [&](Index i) {
-                          return by_method(i) ? pd::von_mises(sigma[i]) : h_.mpm().von_mises(i);
+                          return is_pd(i) ? pd::von_mises(sigma[i]) : h_.mpm().von_mises(i);
                         })});
     if (wants("triaxiality"))
       fields.push_back({"triaxiality", io::FieldKind::scalar, scalar_field(n, [&](Index i) {
-                          return by_method(i) ? pd::triaxiality(sigma[i]) : h_.mpm().triaxiality(i);
+                          return is_pd(i) ? pd::triaxiality(sigma[i]) : h_.mpm().triaxiality(i);
                         })});
   }
   if (wants("eq_plastic_strain")) {
     const std::vector<double>& pd_eps = *s_.pd.model->eq_plastic_strain();  // a plastic model (the parser)
-    fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, scalar_field(n, [&](Index i) {
-                        return by_method(i) ? pd_eps[i] : h_.mpm().eq_plastic_strain(i);
-                      })});
+    fields.push_back({"eq_plastic_strain", io::FieldKind::scalar,
+                      scalar_field(n, [&](Index i) { return is_pd(i) ? pd_eps[i] : h_.mpm().eq_plastic_strain(i); })});
   }
   writer->write_frame(step, t, vector_field<D>(n, [&](Index i) { return p_.position(i); }), fields);
 }

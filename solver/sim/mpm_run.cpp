@@ -144,15 +144,9 @@ void MpmRun<D>::frame(std::int64_t step, double t) {
   if (wants("displacement"))
     fields.push_back({"displacement", io::FieldKind::vector, vec3([&](Index i) { return p_.u[i]; })});
   if (wants("velocity")) fields.push_back({"velocity", io::FieldKind::vector, vec3([&](Index i) { return p_.v[i]; })});
-  if (wants("stress")) {
-    std::vector<double> flat(static_cast<std::size_t>(n) * 6);
-    for (Index i = 0; i < n; ++i) {
-      const Mat<3> s = sim_.state().cauchy(i);
-      const double c[6] = {s(0, 0), s(1, 1), s(2, 2), s(0, 1), s(1, 2), s(0, 2)};  // xx yy zz xy yz xz
-      std::copy(c, c + 6, flat.begin() + 6 * i);
-    }
-    fields.push_back({"stress", io::FieldKind::tensor6, flat});
-  }
+  if (wants("stress"))
+    fields.push_back({"stress", io::FieldKind::tensor6,
+                      tensor6_field(n, [&](Index i) { return tensor6_of(sim_.state().cauchy(i)); })});
   if (wants("von_mises"))
     fields.push_back({"von_mises", io::FieldKind::scalar, scalar([&](Index i) { return sim_.von_mises(i); })});
   if (wants("triaxiality"))

@@ -251,12 +251,8 @@ void PdRun<D>::frame(std::int64_t step, double t) {
   }
   if (wants("stress") || wants("von_mises") || wants("triaxiality")) {
     const auto sigma = stresses();
-    if (wants("stress")) {
-      std::vector<double> flat(static_cast<std::size_t>(n) * 6);
-      for (Index i = 0; i < n; ++i)
-        for (int c = 0; c < 6; ++c) flat[6 * i + c] = sigma[i][c];
-      fields.push_back({"stress", io::FieldKind::tensor6, flat});
-    }
+    if (wants("stress"))
+      fields.push_back({"stress", io::FieldKind::tensor6, tensor6_field(n, [&](Index i) { return sigma[i]; })});
     if (wants("von_mises")) {
       std::vector<double> vm(n);
       for (Index i = 0; i < n; ++i) vm[i] = pd::von_mises(sigma[i]);
