@@ -9,6 +9,7 @@ packages=(
   libgtest-dev libgmock-dev # unit tests and gates
   libbenchmark-dev         # benchmarks/
   libhdf5-dev              # fields.h5, reference_data/*.h5
+  libopenmpi-dev openmpi-bin # distributed runs (solver/dist/), mpirun for their tests
   libgsl-dev               # quadrature and ODE cross-checks
   libtomlplusplus-dev      # scene files
   libcli11-dev             # the pdmpm command line

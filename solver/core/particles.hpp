@@ -1,11 +1,14 @@
 #pragma once
 // Structure-of-arrays particle store. Real particles come first, [0, n_real);
-// mirror ghosts (symmetry planes) follow and copy their owner's reflected state.
+// ghosts follow: mirror ghosts (symmetry planes) copy their owner's reflected
+// state, remote ghosts (a distributed run's halo, solver/dist/) receive the state
+// of a particle another process owns.
 // A particle's kind says which solver integrates it, so a particle can later move
 // between MPM and PD without being copied. `removed` is for good: a particle the
 // hybrid took out of the body at ductile failure (no solver integrates it, no
 // bond reaches it; it stays in the store so indices never move).
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "solver/core/lattice.hpp"
@@ -13,6 +16,14 @@
 #include "solver/core/types.hpp"
 
 namespace pdmpm::core {
+
+// Fills the remote ghosts' entries of a per-particle array (`width` doubles per
+// particle) from the processes that own them (solver/dist/halo_exchange.hpp).
+class RemoteGhosts {
+ public:
+  virtual ~RemoteGhosts() = default;
+  virtual void fill(double* data, int width) const = 0;
+};
 
 enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };
 
@@ -29,9 +40,12 @@ struct Particles {
   std::vector<ParticleKind> kind;
   Index n_real = 0;
 
-  // Ghost g (index n_real + g) mirrors ghost_owner[g] with per-axis signs ghost_sign[g].
+  // Ghost g (index n_real + g) mirrors ghost_owner[g] with per-axis signs ghost_sign[g];
+  // a remote ghost has owner kRemoteOwner and takes its values from `remote`.
+  static constexpr Index kRemoteOwner = -1;
   std::vector<Index> ghost_owner;
   std::vector<Vec<D>> ghost_sign;
+  std::shared_ptr<const RemoteGhosts> remote;
 
   Index size() const { return static_cast<Index>(site.size()); }
   Index n_ghost() const { return size() - n_real; }
@@ -67,9 +81,31 @@ struct Particles {
     const Index ng = n_ghost();
     for (Index g = 0; g < ng; ++g) {
       const Index o = ghost_owner[g], i = n_real + g;
+      if (o == kRemoteOwner) continue;
       u[i] = u[o].cwiseProduct(ghost_sign[g]);
       v[i] = v[o].cwiseProduct(ghost_sign[g]);
     }
+    if (remote) {
+      remote->fill(u.data()->data(), D);
+      remote->fill(v.data()->data(), D);
+    }
+  }
+
+  // A per-particle scalar (an orientation-free quantity: dilatation, weighted volume)
+  // in the ghosts' entries: their owner's value.
+  void fill_ghosts(std::vector<double>& a) const {
+    const Index ng = n_ghost();
+    for (Index g = 0; g < ng; ++g)
+      if (ghost_owner[g] != kRemoteOwner) a[n_real + g] = a[ghost_owner[g]];
+    if (remote) remote->fill(a.data(), 1);
+  }
+
+  // The particle whose state a particle carries: itself, a mirror ghost's owner, or
+  // itself for a remote ghost (its entries are the remote owner's, received).
+  Index source(Index i) const {
+    if (i < n_real) return i;
+    const Index o = ghost_owner[i - n_real];
+    return o == kRemoteOwner ? i : o;
   }
 };
 

@@ -33,7 +33,8 @@ void Lps<D>::refresh(const System<D>& sys, const std::vector<Index>& changed) {
   if (sys.continuum_weighted_volume) return;
   const auto& p = sys.particles;
   for (Index i : changed) set_weighted_volume(i, pd::weighted_volume(sys, i, BondSet::reference));
-  for (Index g = 0; g < p.n_ghost(); ++g) set_weighted_volume(p.n_real + g, m_[p.ghost_owner[g]]);
+  p.fill_ghosts(m_);
+  for (Index g = 0; g < p.n_ghost(); ++g) set_weighted_volume(p.n_real + g, m_[p.n_real + g]);
 }
 
 template <int D>
@@ -60,9 +61,9 @@ std::int64_t Lps<D>::compute_forces(System<D>& sys, const ForceRequest& req) {
   a.breaking = req.break_bonds;
   a.s0 = req.critical_stretch;
   a.after_force = req.break_after_force;
-  // Pass 1: break bonds, dilatation over the intact ones; ghosts copy their owner's.
+  // Pass 1: break bonds, dilatation over the intact ones; ghosts take their owner's.
   std::int64_t newly = kernels::lps_dilatation<D>(a);
-  for (Index g = 0; g < p.n_ghost(); ++g) theta_[n + g] = theta_[p.ghost_owner[g]];
+  p.fill_ghosts(theta_);
   for (Index i = 0; i < p.size(); ++i) alpha_beta_[2 * i] = k_.A * theta_[i] * inv_m_[i];
   // Pass 2: pair forces.
   newly += kernels::lps_forces<D>(a);

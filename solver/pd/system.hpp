@@ -87,11 +87,8 @@ struct System {
     refresh_activity();
   }
 
-  // Kind of any particle, ghosts taking their owner's.
-  core::ParticleKind kind(Index j) const {
-    const auto& p = particles;
-    return p.kind[j < p.n_real ? j : p.ghost_owner[j - p.n_real]];
-  }
+  // Kind of any particle, mirror ghosts taking their owner's.
+  core::ParticleKind kind(Index j) const { return particles.kind[particles.source(j)]; }
 
   // Re-derives every bond's role (pd::bond_role) and the owner list from the kinds;
   // returns the real particles whose set of active or state bonds changed.

@@ -28,7 +28,7 @@ std::vector<double> reference_weighted_volumes(const System<D>& sys) {
   std::vector<double> m(p.size(), 0.0);
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < p.n_real; ++i) m[i] = weighted_volume(sys, i, BondSet::reference);
-  for (Index g = 0; g < p.n_ghost(); ++g) m[p.n_real + g] = m[p.ghost_owner[g]];
+  p.fill_ghosts(m);
   return m;
 }
 

@@ -46,13 +46,37 @@ void add_constraint(const io::Scene& s, const io::BoundarySpec& b, std::vector<I
   out.boundaries.constraints.push_back(std::move(c));
 }
 
+// What a distributed run does not take yet (docs/models/distributed.md), refused by key.
+void check_distributable(const io::Scene& s) {
+  const auto refuse = [&](const std::string& key, const std::string& what) {
+    throw InputError(s.file, key, what + " is not available in a distributed run yet (run it as one process)");
+  };
+  if (!pd::model_info(s.model).symmetry_planes)
+    refuse("model.type", "model \"" + s.model + "\" (it takes no ghost particles)");
+  if (!s.symmetries.empty()) refuse(s.symmetries.front().key, "a symmetry plane");
+  if (s.contact.enabled) refuse("model.contact", "short-range contact");
+  if (s.indenter) refuse("indenter", "an indenter");
+  if (s.crack.enabled) refuse("crack", "crack tracking");
+  if (!s.probes.empty()) refuse("probe", "a probe");
+  if (!s.j_integrals.empty()) refuse(s.j_integrals.front().key, "a J-integral");
+}
+
 }  // namespace
 
 template <int D>
-PdSetup<D> build_pd(const io::Scene& s) {
+PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   PdSetup<D> out;
   auto& sys = out.system;
   sys.particles = fill_body<D>(s);
+  const bool distributed = comm && comm->size() > 1;
+  // Counts over the whole body, for the checks that a region or pre-crack acts somewhere.
+  const auto everywhere = [&](std::int64_t local) { return distributed ? comm->sum(local) : local; };
+  if (distributed) {
+    check_distributable(s);
+    out.ownership.emplace();
+    sys.particles = dist::distribute<D>(*comm, sys.particles, pd::family_ratio(s.partial_volume, s.delta, s.spacing),
+                                        *out.ownership);
+  }
 
   sys.setting = s.setting;
   sys.material = s.material;
@@ -80,7 +104,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
     pd::CrackSurface<D> crack;
     for (const auto& pt : pc.points) crack.points.push_back(to_vec<D>(pt));
     const auto cut = pd::cut_bonds<D>(sys, crack);
-    if (cut == 0) throw InputError(s.file, pc.key, "this pre-crack cuts no bond: it lies outside the body");
+    if (everywhere(cut) == 0) throw InputError(s.file, pc.key, "this pre-crack cuts no bond: it lies outside the body");
     out.precrack_cut += cut;
   }
 
@@ -102,7 +126,7 @@ PdSetup<D> build_pd(const io::Scene& s) {
 
   for (const auto& b : s.boundaries) {
     auto selected = select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(b.region), s.spacing);
-    if (selected.empty())
+    if (everywhere(static_cast<std::int64_t>(selected.size())) == 0)
       throw InputError(s.file, b.key + ".region",
                        "selects no particle (particles sit on lattice sites; check the region against the body)");
     if (b.kind == io::BoundaryKind::traction) {
@@ -173,8 +197,8 @@ PdSetup<D> build_pd(const io::Scene& s) {
   return out;
 }
 
-template PdSetup<1> build_pd<1>(const io::Scene&);
-template PdSetup<2> build_pd<2>(const io::Scene&);
-template PdSetup<3> build_pd<3>(const io::Scene&);
+template PdSetup<1> build_pd<1>(const io::Scene&, const dist::Communicator*);
+template PdSetup<2> build_pd<2>(const io::Scene&, const dist::Communicator*);
+template PdSetup<3> build_pd<3>(const io::Scene&, const dist::Communicator*);
 
 }  // namespace pdmpm::sim

@@ -12,6 +12,7 @@
 #include "solver/bc/boundary.hpp"
 #include "solver/bc/initial_condition.hpp"
 #include "solver/bc/indenter.hpp"
+#include "solver/dist/distribute.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/pd/contact.hpp"
 #include "solver/pd/crack_observables.hpp"
@@ -42,6 +43,9 @@ struct PdSetup {
   std::optional<pd::CrackSettings> crack;
   std::vector<pd::NamedLocation<D>> locations;
   std::vector<std::uint8_t> crack_exclude;  // per real particle: in a region excluded from crack detection
+  // A distributed run: this process's particles in the whole body (its store holds
+  // its own particles and their halo, solver/dist/).
+  std::optional<dist::Ownership> ownership;
 
   // What acts on the body besides its bonds, for a pd::Simulation.
   pd::Forcing<D> forcing() {
@@ -61,7 +65,10 @@ pd::Simulation<D> make_simulation(PdSetup<D>& s) {
   return pd::Simulation<D>(s.system, *s.model, s.forcing());
 }
 
+// With a communicator of more than one process, each builds its share of the body
+// (solver/dist/distribute.hpp); the scene's checks (a region selecting nothing, a
+// pre-crack cutting nothing) then look at the whole body.
 template <int D>
-PdSetup<D> build_pd(const io::Scene& scene);
+PdSetup<D> build_pd(const io::Scene& scene, const dist::Communicator* comm = nullptr);
 
 }  // namespace pdmpm::sim

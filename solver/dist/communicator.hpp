@@ -1,0 +1,44 @@
+#pragma once
+// The processes of a distributed run (MPI), with the few collective operations the
+// solver needs. A run started without mpirun is one process: size() = 1.
+#include <mpi.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace pdmpm::dist {
+
+// Initialises MPI for the lifetime of main() (and finalises it); the first thing a
+// program that may run under mpirun creates. OpenMP threads never call MPI, so
+// MPI_THREAD_FUNNELED is enough.
+class MpiSession {
+ public:
+  MpiSession(int& argc, char**& argv);
+  ~MpiSession();
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+class Communicator {
+ public:
+  // Every process of the run (MPI_COMM_WORLD); one process if MPI is not initialised.
+  Communicator();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  MPI_Comm handle() const { return comm_; }
+
+  std::int64_t sum(std::int64_t local) const;
+  double max(double local) const;
+  double min(double local) const;
+  // Every process's `local` values, concatenated in rank order, on rank 0 (empty elsewhere).
+  std::vector<double> gather(const std::vector<double>& local) const;
+  std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const;
+  void barrier() const;
+
+ private:
+  MPI_Comm comm_ = MPI_COMM_NULL;
+  int rank_ = 0, size_ = 1;
+};
+
+}  // namespace pdmpm::dist

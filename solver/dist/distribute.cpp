@@ -1,0 +1,27 @@
+#include "solver/dist/distribute.hpp"
+
+#include <memory>
+
+#include "solver/dist/halo_exchange.hpp"
+
+namespace pdmpm::dist {
+
+template <int D>
+core::Particles<D> distribute(const Communicator& comm, const core::Particles<D>& body, double family_ratio,
+                              Ownership& ownership) {
+  ownership.global_count = body.n_real;
+  ownership.own = owned_range(body.n_real, comm.rank(), comm.size());
+  ownership.halo = halo_of(body, core::Stencil<D>::build(family_ratio), ownership.own);
+  auto local = local_store(body, ownership.own, ownership.halo);
+  auto exchange = std::make_shared<HaloExchange>(comm, body.n_real, ownership.own, local.n_real, ownership.halo);
+  ownership.values_sent = exchange->values_sent();
+  ownership.neighbours = exchange->neighbours();
+  local.remote = std::move(exchange);
+  return local;
+}
+
+template core::Particles<1> distribute<1>(const Communicator&, const core::Particles<1>&, double, Ownership&);
+template core::Particles<2> distribute<2>(const Communicator&, const core::Particles<2>&, double, Ownership&);
+template core::Particles<3> distribute<3>(const Communicator&, const core::Particles<3>&, double, Ownership&);
+
+}  // namespace pdmpm::dist

@@ -1,0 +1,31 @@
+#pragma once
+// Splits a body between the processes of a run: each keeps its own particles and
+// its halo (solver/dist/decomposition.hpp), the halo kept current by messages
+// (solver/dist/halo_exchange.hpp). Every process builds the whole body's
+// particles first (positions only; families and bonds, the bulk of the memory,
+// are built for its own particles alone).
+#include <vector>
+
+#include "solver/core/particles.hpp"
+#include "solver/dist/communicator.hpp"
+#include "solver/dist/decomposition.hpp"
+
+namespace pdmpm::dist {
+
+// Where a process's particles sit in the whole body.
+struct Ownership {
+  Index global_count = 0;        // real particles of the whole body
+  OwnedRange own;                // its own particles' global indices
+  std::vector<Index> halo;       // its remote ghosts' global indices, in store order
+  std::int64_t values_sent = 0;  // values it sends per exchanged scalar
+  int neighbours = 0;            // processes it exchanges with
+};
+
+// This process's store of `body` (which must have no ghosts), with the halo every
+// bond of a family of `family_ratio` lattice spacings needs; the exchange is set
+// as the store's `remote`.
+template <int D>
+core::Particles<D> distribute(const Communicator& comm, const core::Particles<D>& body, double family_ratio,
+                              Ownership& ownership);
+
+}  // namespace pdmpm::dist

@@ -1,0 +1,81 @@
+#include "solver/dist/halo_exchange.hpp"
+
+#include <map>
+
+namespace pdmpm::dist {
+
+HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real,
+                           const std::vector<Index>& halo)
+    : comm_(comm.handle()) {
+  const int ranks = comm.size();
+  // What this process receives: its halo grouped by owner (contiguous, as ranges are).
+  std::vector<std::vector<std::int64_t>> asked(ranks);
+  std::map<int, Peer> peers;
+  for (std::size_t h = 0; h < halo.size(); ++h) {
+    const int q = owner_rank(halo[h], n, ranks);
+    auto& peer = peers[q];
+    if (peer.recv_count == 0) peer.recv_first = n_real + static_cast<Index>(h);
+    ++peer.recv_count;
+    asked[q].push_back(halo[h]);
+  }
+  // What it sends: the requests of the others, turned into its own local indices.
+  std::vector<int> ask_count(ranks), ask_offset(ranks), get_count(ranks), get_offset(ranks);
+  std::vector<std::int64_t> ask_flat;
+  for (int q = 0; q < ranks; ++q) {
+    ask_count[q] = static_cast<int>(asked[q].size());
+    ask_offset[q] = static_cast<int>(ask_flat.size());
+    ask_flat.insert(ask_flat.end(), asked[q].begin(), asked[q].end());
+  }
+  MPI_Alltoall(ask_count.data(), 1, MPI_INT, get_count.data(), 1, MPI_INT, comm_);
+  int total = 0;
+  for (int q = 0; q < ranks; ++q) get_offset[q] = total, total += get_count[q];
+  std::vector<std::int64_t> get_flat(static_cast<std::size_t>(total));
+  MPI_Alltoallv(ask_flat.data(), ask_count.data(), ask_offset.data(), MPI_INT64_T, get_flat.data(), get_count.data(),
+                get_offset.data(), MPI_INT64_T, comm_);
+  for (int q = 0; q < ranks; ++q) {
+    if (get_count[q] == 0) continue;
+    auto& peer = peers[q];
+    for (int k = 0; k < get_count[q]; ++k) {
+      const auto g = static_cast<Index>(get_flat[static_cast<std::size_t>(get_offset[q] + k)]);
+      if (!own.contains(g)) throw std::logic_error("halo exchange: asked for a particle this process does not own");
+      peer.send.push_back(g - own.begin);
+    }
+  }
+  for (auto& [q, peer] : peers) {
+    peer.rank = q;
+    peers_.push_back(std::move(peer));
+  }
+  buffers_.resize(peers_.size());
+}
+
+void HaloExchange::fill(double* data, int width) const {
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * peers_.size());
+  for (std::size_t k = 0; k < peers_.size(); ++k) {
+    const auto& peer = peers_[k];
+    if (peer.recv_count > 0) {
+      requests.emplace_back();
+      MPI_Irecv(data + static_cast<std::size_t>(peer.recv_first) * width, static_cast<int>(peer.recv_count) * width,
+                MPI_DOUBLE, peer.rank, 0, comm_, &requests.back());
+    }
+  }
+  for (std::size_t k = 0; k < peers_.size(); ++k) {
+    const auto& peer = peers_[k];
+    if (peer.send.empty()) continue;
+    auto& buf = buffers_[k];
+    buf.resize(peer.send.size() * static_cast<std::size_t>(width));
+    for (std::size_t s = 0; s < peer.send.size(); ++s)
+      for (int c = 0; c < width; ++c) buf[s * width + c] = data[static_cast<std::size_t>(peer.send[s]) * width + c];
+    requests.emplace_back();
+    MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peer.rank, 0, comm_, &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+std::int64_t HaloExchange::values_sent() const {
+  std::int64_t n = 0;
+  for (const auto& peer : peers_) n += static_cast<std::int64_t>(peer.send.size());
+  return n;
+}
+
+}  // namespace pdmpm::dist

@@ -1,0 +1,39 @@
+#pragma once
+// The messages that keep a process's remote ghosts current (core::RemoteGhosts):
+// each process sends the values of its own particles that other processes hold in
+// their halos, and receives its halo's values from their owners. The lists are
+// agreed once (each process asks the owners for its halo's global indices); a
+// fill is then one message per neighbouring process each way.
+#include <vector>
+
+#include "solver/core/particles.hpp"
+#include "solver/dist/communicator.hpp"
+#include "solver/dist/decomposition.hpp"
+
+namespace pdmpm::dist {
+
+class HaloExchange final : public core::RemoteGhosts {
+ public:
+  // `halo`: global indices of the remote ghosts, increasing, in the store's ghost
+  // order after `n_real` own particles; `n`: the body's real particles.
+  HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real, const std::vector<Index>& halo);
+
+  void fill(double* data, int width) const override;
+
+  // Values one fill of width 1 sends from this process (the communication volume).
+  std::int64_t values_sent() const;
+  int neighbours() const { return static_cast<int>(peers_.size()); }
+
+ private:
+  struct Peer {
+    int rank = 0;
+    std::vector<Index> send;  // own particles (local index) it needs, in its order
+    Index recv_first = 0;     // first local index of the ghosts it owns
+    Index recv_count = 0;
+  };
+  MPI_Comm comm_;
+  std::vector<Peer> peers_;
+  mutable std::vector<std::vector<double>> buffers_;
+};
+
+}  // namespace pdmpm::dist
