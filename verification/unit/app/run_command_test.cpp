@@ -57,6 +57,21 @@ TEST(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run_pdmpm("constants --format xml").status, 2);
 }
 
+// Started by mpirun (its environment), the run command refuses before writing anything:
+// every copy would otherwise write the same directory.
+TEST(Cli, AStartUnderMpirunIsRefusedWithNothingWritten) {
+  const pdmpm::test::ScratchDir dir("cli_mpirun");
+  const auto scene = dir.path() / "plate.toml";
+  std::ofstream(scene) << pdmpm::test::SceneText{}.toml();
+  const auto out = dir.path() / "out";
+  const auto r = pdmpm::test::run_command("OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 " +
+                                          std::string(PDMPM_BINARY_DIR) + "/pdmpm run " + scene.string() +
+                                          " --out " + out.string() + " --quiet");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("2 processes"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
 // A tiny scene of each model in 2D and 3D runs and reports bond updates per second.
 TEST(Cli, SmallScenesOfEachModelRun) {
   for (const auto& model : pdmpm::pd::model_names())
