@@ -7,7 +7,9 @@
 // between MPM and PD without being copied. `removed` is for good: a particle the
 // hybrid took out of the body at ductile failure (no solver integrates it, no
 // bond reaches it; it stays in the store so indices never move).
+#include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -17,12 +19,17 @@
 
 namespace pdmpm::core {
 
-// Fills the remote ghosts' entries of a per-particle array (`width` doubles per
-// particle) from the processes that own them (solver/dist/halo_exchange.hpp).
-class RemoteGhosts {
+// The other processes of a distributed run as a particle store sees them
+// (solver/dist/halo_exchange.hpp): they fill its remote ghosts and join its sums.
+class OtherProcesses {
  public:
-  virtual ~RemoteGhosts() = default;
+  virtual ~OtherProcesses() = default;
+  // The remote ghosts' entries of a per-particle array (`width` doubles per particle).
   virtual void fill(double* data, int width) const = 0;
+  // `n` sums over the particles of every process in their global order: add_own adds
+  // this process's terms to `partial`, which arrives holding the processes' before it;
+  // `partial` returns the totals, the same on every process.
+  virtual void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const = 0;
 };
 
 enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };
@@ -45,7 +52,7 @@ struct Particles {
   static constexpr Index kRemoteOwner = -1;
   std::vector<Index> ghost_owner;
   std::vector<Vec<D>> ghost_sign;
-  std::shared_ptr<const RemoteGhosts> remote;
+  std::shared_ptr<const OtherProcesses> remote;
 
   Index size() const { return static_cast<Index>(site.size()); }
   Index n_ghost() const { return size() - n_real; }
@@ -98,6 +105,19 @@ struct Particles {
     for (Index g = 0; g < ng; ++g)
       if (ghost_owner[g] != kRemoteOwner) a[n_real + g] = a[ghost_owner[g]];
     if (remote) remote->fill(a.data(), 1);
+  }
+
+  // N sums over particles from `start`, taken in the global particle order: add_own(s)
+  // adds this store's terms to s[0..N); with other processes the sums continue theirs
+  // in rank order, so a distributed total is the one-process total to the bit.
+  template <int N, class Fn>
+  std::array<double, N> sum_in_order(Fn&& add_own, std::array<double, N> start = {}) const {
+    auto s = start;
+    if (remote)
+      remote->ordered_sum(s.data(), N, [&](double* partial) { add_own(partial); });
+    else
+      add_own(s.data());
+    return s;
   }
 
   // The particle whose state a particle carries: itself, a mirror ghost's owner, or

@@ -6,8 +6,8 @@ namespace pdmpm::dist {
 
 HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real,
                            const std::vector<Index>& halo)
-    : comm_(comm.handle()) {
-  const int ranks = comm.size();
+    : comm_(comm.handle()), rank_(comm.rank()), ranks_(comm.size()) {
+  const int ranks = ranks_;
   // What this process receives: its halo grouped by owner (contiguous, as ranges are).
   std::vector<std::vector<std::int64_t>> asked(ranks);
   std::map<int, Peer> peers;
@@ -70,6 +70,16 @@ void HaloExchange::fill(double* data, int width) const {
     MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peer.rank, 0, comm_, &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+}
+
+void HaloExchange::ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const {
+  // A chain: latency grows with the process count (one message per process per sum),
+  // the price of the one-process bits; docs/models/distributed.md.
+  constexpr int tag = 1;
+  if (rank_ > 0) MPI_Recv(partial, n, MPI_DOUBLE, rank_ - 1, tag, comm_, MPI_STATUS_IGNORE);
+  add_own(partial);
+  if (rank_ + 1 < ranks_) MPI_Send(partial, n, MPI_DOUBLE, rank_ + 1, tag, comm_);
+  MPI_Bcast(partial, n, MPI_DOUBLE, ranks_ - 1, comm_);
 }
 
 std::int64_t HaloExchange::values_sent() const {

@@ -1,9 +1,11 @@
 #pragma once
-// The messages that keep a process's remote ghosts current (core::RemoteGhosts):
+// The messages between a process and the others (core::OtherProcesses). Halo:
 // each process sends the values of its own particles that other processes hold in
-// their halos, and receives its halo's values from their owners. The lists are
-// agreed once (each process asks the owners for its halo's global indices); a
-// fill is then one message per neighbouring process each way.
+// their halos, and receives its halo's values from their owners; the lists are
+// agreed once (each process asks the owners for its halo's global indices), a
+// fill is then one message per neighbouring process each way. Sums: passed along
+// the processes in rank order, each adding its own particles' terms — the
+// one-process order, since ownership ranges are contiguous in the global index.
 #include <vector>
 
 #include "solver/core/particles.hpp"
@@ -12,13 +14,14 @@
 
 namespace pdmpm::dist {
 
-class HaloExchange final : public core::RemoteGhosts {
+class HaloExchange final : public core::OtherProcesses {
  public:
   // `halo`: global indices of the remote ghosts, increasing, in the store's ghost
   // order after `n_real` own particles; `n`: the body's real particles.
   HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real, const std::vector<Index>& halo);
 
   void fill(double* data, int width) const override;
+  void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const override;
 
   // Values one fill of width 1 sends from this process (the communication volume).
   std::int64_t values_sent() const;
@@ -32,6 +35,7 @@ class HaloExchange final : public core::RemoteGhosts {
     Index recv_count = 0;
   };
   MPI_Comm comm_;
+  int rank_ = 0, ranks_ = 1;
   std::vector<Peer> peers_;
   mutable std::vector<std::vector<double>> buffers_;
 };

@@ -101,41 +101,47 @@ void Simulation<D>::drift(double dt) {
   }
 }
 
+// Sums over the movers in the global particle order (over every process in a distributed run).
 template <int D>
 double Simulation<D>::kinetic_energy() const {
   const auto& p = particles();
-  double ke = 0.0;
-  for (Index i : movers_) ke += p.volume[i] * p.v[i].squaredNorm();
+  const auto [ke] = p.template sum_in_order<1>([&](double* s) {
+    for (Index i : movers_) s[0] += p.volume[i] * p.v[i].squaredNorm();
+  });
   return 0.5 * density() * ke;
 }
 
 template <int D>
 double Simulation<D>::internal_energy() const {
   const auto& p = particles();
-  double u = 0.0;
-  for (Index i : movers_) u += energy_[i] * p.volume[i];
-  return u;
+  return p.template sum_in_order<1>([&](double* s) {
+    for (Index i : movers_) s[0] += energy_[i] * p.volume[i];
+  })[0];
 }
 
 template <int D>
 Vec<D> Simulation<D>::momentum() const {
   const auto& p = particles();
-  Vec<D> m = Vec<D>::Zero();
-  for (Index i : movers_) m += p.volume[i] * p.v[i];
-  return density() * m;
+  const auto m = p.template sum_in_order<D>([&](double* s) {
+    for (Index i : movers_)
+      for (int a = 0; a < D; ++a) s[a] += p.volume[i] * p.v[i][a];
+  });
+  return density() * Eigen::Map<const Vec<D>>(m.data());
 }
 
 template <int D>
 Eigen::Vector3d Simulation<D>::angular_momentum() const {
   const auto& p = particles();
-  Eigen::Vector3d L = Eigen::Vector3d::Zero();
-  for (Index i : movers_) {
-    Eigen::Vector3d x = Eigen::Vector3d::Zero(), q = Eigen::Vector3d::Zero();
-    const Vec<D> xi = p.position(i);
-    for (int a = 0; a < D; ++a) x[a] = xi[a], q[a] = p.volume[i] * p.v[i][a];
-    L += x.cross(q);
-  }
-  return density() * L;
+  const auto L = p.template sum_in_order<3>([&](double* s) {
+    for (Index i : movers_) {
+      Eigen::Vector3d x = Eigen::Vector3d::Zero(), q = Eigen::Vector3d::Zero();
+      const Vec<D> xi = p.position(i);
+      for (int a = 0; a < D; ++a) x[a] = xi[a], q[a] = p.volume[i] * p.v[i][a];
+      const Eigen::Vector3d c = x.cross(q);
+      for (int k = 0; k < 3; ++k) s[k] += c[k];
+    }
+  });
+  return density() * Eigen::Map<const Eigen::Vector3d>(L.data());
 }
 
 template <int D>

@@ -61,15 +61,21 @@ template <int D>
 void VelocityVerlet<D>::book_work() {
   const auto& p = sim_.particles();
   const double rho = sim_.density();
-  double dw = 0.0;
-  for (Index i : sim_.movers()) dw += p.volume[i] * 0.5 * (b_old_[i] + p.b[i]).dot(p.u[i] - u_old_[i]);
-  for (std::size_t k = 0; k < held_.size(); ++k) {
-    const auto [i, a] = held_[k];
-    const double du = p.u[i][a] - u_old_[i][a];
-    const double fnew = p.f[i][a] + p.b[i][a];
-    dw +=
-        p.volume[i] * (0.5 * rho * (p.v[i][a] * p.v[i][a] - held_v_[k] * held_v_[k]) - 0.5 * (held_f_[k] + fnew) * du);
-  }
+  // Two sums in the global particle order, the second continuing the first.
+  const auto forces = p.template sum_in_order<1>([&](double* dw) {
+    for (Index i : sim_.movers()) dw[0] += p.volume[i] * 0.5 * (b_old_[i] + p.b[i]).dot(p.u[i] - u_old_[i]);
+  });
+  const double dw = p.template sum_in_order<1>(
+      [&](double* s) {
+        for (std::size_t k = 0; k < held_.size(); ++k) {
+          const auto [i, a] = held_[k];
+          const double du = p.u[i][a] - u_old_[i][a];
+          const double fnew = p.f[i][a] + p.b[i][a];
+          s[0] += p.volume[i] *
+              (0.5 * rho * (p.v[i][a] * p.v[i][a] - held_v_[k] * held_v_[k]) - 0.5 * (held_f_[k] + fnew) * du);
+        }
+      },
+      forces)[0];
   work_ += dw;
   work_abs_ += std::abs(dw);
 }
@@ -78,12 +84,12 @@ template <int D>
 double VelocityVerlet<D>::pending_work() const {
   const auto& p = sim_.particles();
   const double rho = sim_.density();
-  double lag = 0.0;
-  for (Index i : sim_.movers()) {
-    const double b = p.b[i].norm();
-    if (b > 0.0) lag += p.volume[i] * b * (p.v[i].norm() * dt_ + 0.5 * dt_ * dt_ * b / rho);
-  }
-  return lag;
+  return p.template sum_in_order<1>([&](double* lag) {
+    for (Index i : sim_.movers()) {
+      const double b = p.b[i].norm();
+      if (b > 0.0) lag[0] += p.volume[i] * b * (p.v[i].norm() * dt_ + 0.5 * dt_ * dt_ * b / rho);
+    }
+  })[0];
 }
 
 template <int D>

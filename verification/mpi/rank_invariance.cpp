@@ -40,6 +40,19 @@ std::string scene_text(const std::string& model, int D) {
   if (!pd::model_info(model).pair_potential)
     s += "poissons_ratio = 0.3\n";  // not ¼: there the 3D dilatation term vanishes (A = 3K − 5μ = 0)
   s += "[model]\ntype = \"" + model + "\"\n[time]\nsteps = 1\n";
+  // Both ends keep pulling (held components: the supports' work is booked as well).
+  const auto strip = [&](const std::string& name, const std::string& lo, const std::string& hi, double vx) {
+    const std::string free = D == 2 ? ", \"free\"" : ", \"free\", \"free\"";
+    s += "[[boundary]]\nname = \"" + name + "\"\nkind = \"velocity\"\nregion = { type = \"box\", min = " + lo +
+        ", max = " + hi + " }\nvalue = [" + std::to_string(vx) + free + "]\n";
+  };
+  if (D == 2) {
+    strip("left", "[-1, -1]", "[0.002, 1]", -5.0);
+    strip("right", "[0.046, -1]", "[1, 1]", 5.0);
+  } else {
+    strip("left", "[-1, -1, -1]", "[0.002, 1, 1]", -5.0);
+    strip("right", "[0.014, -1, -1]", "[1, 1, 1]", 5.0);
+  }
   return s;
 }
 
@@ -49,6 +62,9 @@ struct Fields {
   std::int64_t broken_across = 0;            // broken bond sides whose other end a different process owns
   double largest_force = 0.0;                // max |f| component at the end (the body still carries stress)
   std::int64_t halo = 0, own = 0, sent = 0;  // this process's halo and own particles, values it sends per scalar
+  // Sums over the body at the end: kinetic and strain energy, external work, pending
+  // work, linear and angular momentum.
+  std::vector<double> sums;
 };
 
 template <int D>
@@ -61,9 +77,13 @@ Fields run(const io::Scene& scene, const dist::Communicator* comm, double& dt, i
   auto st = sim::make_simulation(setup);
   time::VelocityVerlet<D> stepper(st, dt);
   stepper.start();
-  for (int k = 0; k < steps; ++k) stepper.step(false);
+  for (int k = 1; k <= steps; ++k) stepper.step(k == steps);
 
   Fields out;
+  out.sums = {st.kinetic_energy(), st.internal_energy(), stepper.external_work(), stepper.absolute_work(),
+              stepper.pending_work()};
+  for (int a = 0; a < D; ++a) out.sums.push_back(st.momentum()[a]);
+  for (int a = 0; a < 3; ++a) out.sums.push_back(st.angular_momentum()[a]);
   const auto n = static_cast<std::size_t>(p.n_real) * D;
   out.u.assign(p.u.data()->data(), p.u.data()->data() + n);
   out.v.assign(p.v.data()->data(), p.v.data()->data() + n);
@@ -110,6 +130,8 @@ bool check(const std::string& model, const dist::Communicator& comm, json& rows)
 
   std::size_t dflags = flags.size() == one.flags.size() ? 0 : std::max(flags.size(), one.flags.size());
   for (std::size_t b = 0; dflags == 0 && b < flags.size(); ++b) dflags += flags[b] != one.flags[b];
+  // Every process holds the same totals; rank 0's are compared.
+  const std::size_t dsums = differing(one.sums, many.sums);
   const std::size_t du = differing(one.u, u), dv = differing(one.v, v), df = differing(one.f, f),
                     dd = differing(one.damage, damage);
   std::int64_t broken = 0;
@@ -119,9 +141,9 @@ bool check(const std::string& model, const dist::Communicator& comm, json& rows)
                .claim = "A fracturing " + dim + " body (" + model + ", " + std::to_string(steps) + " steps, " +
                    std::to_string(broken / 2) + " bonds broken, " + std::to_string(across / 2) +
                    " of them across process boundaries) shall give bitwise identical displacements, velocities, "
-                   "forces, bond flags and damage on " +
+                   "forces, bond flags, damage, energies, work and momenta on " +
                    ranks + " processes as on one (measured: values that differ in any bit)",
-               .measured = static_cast<double>(du + dv + df + dd + dflags),
+               .measured = static_cast<double>(du + dv + df + dd + dflags + dsums),
                .expected = 0.0,
                .tolerance = 0.0,
                .compare = test::Compare::abs,
@@ -145,7 +167,7 @@ bool check(const std::string& model, const dist::Communicator& comm, json& rows)
   const bool ok = test::write_gate(g, "rank_invariance");
   rows.push_back({model, dim, comm.size(), static_cast<double>(one.damage.size()), halo, halo_share, sent, steps,
                   broken / 2, across / 2, static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df),
-                  static_cast<double>(dflags), static_cast<double>(dd)});
+                  static_cast<double>(dflags), static_cast<double>(dd), static_cast<double>(dsums)});
   std::cout << (ok ? "PASS " : "FAIL ") << g.id << ": " << g.measured << " values differ, " << across / 2
             << " broken bonds across processes\n";
   return ok;
