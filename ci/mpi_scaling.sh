@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# Distributed PD throughput on this machine (docs/models/distributed.md, "Scaling"):
+# strong scaling of a 40³ LPS block and weak scaling of 40³ per process, with 1 and 2
+# processes of one OpenMP thread and, for comparison, one process of 2 threads.
+# Interleaved repetitions; prints one JSON line per run. Not part of CI (timings).
+# Usage: ci/mpi_scaling.sh [build-dir] [repetitions]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+reps=${2:-3}
+bin=$build/benchmarks/pdmpm_mpi_scaling
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+for ((r = 1; r <= reps; ++r)); do
+  for mode in "" "--weak"; do
+    OMP_NUM_THREADS=1 mpirun -n 1 "$bin" $mode
+    OMP_NUM_THREADS=2 mpirun -n 1 --bind-to none "$bin" $mode
+    OMP_NUM_THREADS=1 mpirun -n 2 "$bin" $mode
+  done
+done
