@@ -2,7 +2,9 @@
 # Distributed PD throughput on this machine (docs/models/distributed.md, "Scaling"):
 # strong scaling of a 40³ LPS block and weak scaling of 40³ per process, with 1 and 2
 # processes of one OpenMP thread and, for comparison, one process of 2 threads.
-# Interleaved repetitions; prints one JSON line per run. Not part of CI (timings).
+# Interleaved repetitions; one JSON line per run, then the medians and the projection
+# of docs/models/distributed.md as tables of the report's "distributed" section
+# (<build>/results/data/distributed/scaling*.json). Not part of CI (timings).
 # Usage: ci/mpi_scaling.sh [build-dir] [repetitions]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,10 +12,13 @@ build=${1:-build}
 reps=${2:-3}
 bin=$build/benchmarks/pdmpm_mpi_scaling
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+runs=$(mktemp)
+trap 'rm -f "$runs"' EXIT
 for ((r = 1; r <= reps; ++r)); do
   for mode in "" "--weak"; do
     OMP_NUM_THREADS=1 mpirun -n 1 "$bin" $mode
     OMP_NUM_THREADS=2 mpirun -n 1 --bind-to none "$bin" $mode
     OMP_NUM_THREADS=1 mpirun -n 2 "$bin" $mode
   done
-done
+done | tee "$runs"
+/usr/bin/python3 ci/mpi_scaling_tables.py "$runs" "$build/results/data/distributed" "$(uptime)"
