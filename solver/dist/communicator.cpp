@@ -1,7 +1,6 @@
 #include "solver/dist/communicator.hpp"
 
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 namespace pdmpm::dist {
@@ -22,26 +21,24 @@ Communicator::Communicator() {
   MPI_Comm_size(comm_, &size_);
 }
 
+namespace {
+
+// The reduction of one value over every process (the value itself in a one-process run).
+template <class T>
+T all_reduce(MPI_Comm comm, int size, T local, MPI_Datatype type, MPI_Op op) {
+  if (size == 1) return local;
+  T all{};
+  MPI_Allreduce(&local, &all, 1, type, op, comm);
+  return all;
+}
+
+}  // namespace
+
 std::int64_t Communicator::sum(std::int64_t local) const {
-  if (size_ == 1) return local;
-  std::int64_t all = 0;
-  MPI_Allreduce(&local, &all, 1, MPI_INT64_T, MPI_SUM, comm_);
-  return all;
+  return all_reduce(comm_, size_, local, MPI_INT64_T, MPI_SUM);
 }
-
-double Communicator::max(double local) const {
-  if (size_ == 1) return local;
-  double all = 0.0;
-  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MAX, comm_);
-  return all;
-}
-
-double Communicator::min(double local) const {
-  if (size_ == 1) return local;
-  double all = 0.0;
-  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MIN, comm_);
-  return all;
-}
+double Communicator::max(double local) const { return all_reduce(comm_, size_, local, MPI_DOUBLE, MPI_MAX); }
+double Communicator::min(double local) const { return all_reduce(comm_, size_, local, MPI_DOUBLE, MPI_MIN); }
 
 namespace {
 

@@ -1,6 +1,7 @@
 #include "solver/dist/halo_exchange.hpp"
 
 #include <map>
+#include <stdexcept>
 
 namespace pdmpm::dist {
 

@@ -64,9 +64,9 @@ TEST(Cli, AStartUnderMpirunIsRefusedWithNothingWritten) {
   const auto scene = dir.path() / "plate.toml";
   std::ofstream(scene) << pdmpm::test::SceneText{}.toml();
   const auto out = dir.path() / "out";
-  const auto r = pdmpm::test::run_command("OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 " +
-                                          std::string(PDMPM_BINARY_DIR) + "/pdmpm run " + scene.string() +
-                                          " --out " + out.string() + " --quiet");
+  const auto r =
+      pdmpm::test::run_command("OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 " + std::string(PDMPM_BINARY_DIR) +
+                               "/pdmpm run " + scene.string() + " --out " + out.string() + " --quiet");
   EXPECT_EQ(r.status, 2) << r.output;
   EXPECT_NE(r.output.find("2 processes"), std::string::npos) << r.output;
   EXPECT_FALSE(fs::exists(out));
