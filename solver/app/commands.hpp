@@ -4,6 +4,10 @@
 // 4 internal error, 5 interrupted by SIGINT/SIGTERM (checkpoint written where the run has one).
 #include <string>
 
+namespace pdmpm::dist {
+class Communicator;
+}
+
 namespace pdmpm::app {
 
 struct RunArgs {
@@ -12,7 +16,8 @@ struct RunArgs {
   bool quiet = false, no_fields = false;
   std::string checkpoint_every;  // steps ("5000") or wall time ("30m"); empty: none
 };
-int run_command(const RunArgs& args);
+// `comm`: the processes of a distributed run (mpirun); process 0 writes and speaks.
+int run_command(const RunArgs& args, const dist::Communicator* comm = nullptr);
 
 struct ResumeArgs {
   std::string dir;

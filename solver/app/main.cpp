@@ -5,6 +5,7 @@
 
 #include "solver/app/commands.hpp"
 #include "solver/core/build_info.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/dist/launch.hpp"
 
 int main(int argc, char** argv) {
@@ -61,15 +62,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  // The command line runs a scene as one process; under mpirun every copy would write
-  // the same output directory. Distributed PD exists as a library (solver/dist/,
-  // docs/models/distributed.md) but the run command does not use it yet.
-  if (const auto launch = pdmpm::dist::launch_from_environment(); launch.processes > 1 && !*cmd_const) {
-    if (launch.rank == 0)
-      std::cerr << "error: pdmpm was started as " << launch.processes
-                << " processes (mpirun): the run, resume and check commands run a scene as one process and do not "
-                   "distribute it yet (docs/models/distributed.md); start it without mpirun\n";
-    return 2;
+  // Under mpirun (several processes) a run is distributed (docs/models/distributed.md);
+  // resume and check work on one process.
+  if (const auto launch = pdmpm::dist::launch_from_environment(); launch.processes > 1) {
+    if (*cmd_run) {
+      const pdmpm::dist::MpiSession session(argc, argv);
+      const pdmpm::dist::Communicator comm;
+      return pdmpm::app::run_command(run, &comm);
+    }
+    if (!*cmd_const) {
+      if (launch.rank == 0)
+        std::cerr << "error: pdmpm was started as " << launch.processes << " processes (mpirun): only the run "
+                  << "command distributes a scene; start " << (*cmd_resume ? "resume" : "check") << " without mpirun\n";
+      return 2;
+    }
   }
   if (*cmd_run) return pdmpm::app::run_command(run);
   if (*cmd_resume) return pdmpm::app::resume_command(resume);

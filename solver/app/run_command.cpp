@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <iostream>
+#include <utility>
 
 #include "solver/app/commands.hpp"
 #include "solver/core/error.hpp"
 #include "solver/core/state_archive.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/sim/checkpoint.hpp"
 #include "solver/sim/interrupt.hpp"
@@ -64,39 +66,71 @@ int run_and_report(const io::Scene& scene, const sim::RunOptions& opt, bool quie
   return 0;
 }
 
-// Exit status of an exception a run or resume threw.
-int report_error() {
+// An error's exit status and message.
+std::pair<int, std::string> describe(const std::exception_ptr& error) {
+  try {
+    std::rethrow_exception(error);
+  } catch (const InputError& e) {
+    return {2, fmt::format("error: {}", e.what())};
+  } catch (const core::StateMismatch& e) {
+    return {2, fmt::format("error: the checkpoint does not fit this run: {}", e.what())};
+  } catch (const RunError& e) {
+    return {3, fmt::format("run failed: {}", e.what())};
+  } catch (const std::exception& e) {
+    return {4, fmt::format("internal error: {}", e.what())};
+  }
+}
+
+// Exit status of an exception a run or resume threw, its message on stderr. In a
+// distributed run, input errors are met alike by every process (each reads the same
+// scene and checks the whole body): process 0 speaks for all. An error the others
+// have learnt of (SharedFailure) is reported by the process that met it. Any other
+// error may be one process's alone: it says which and stops the others (MPI_Abort),
+// which would wait for it.
+int report_error(const dist::Communicator* comm) {
+  std::exception_ptr error = std::current_exception();
+  bool shared = false;
   try {
     throw;
-  } catch (const InputError& e) {
-    std::cerr << "pdmpm: error: " << e.what() << "\n";
-    return 2;
-  } catch (const core::StateMismatch& e) {
-    std::cerr << "pdmpm: error: the checkpoint does not fit this run: " << e.what() << "\n";
-    return 2;
-  } catch (const RunError& e) {
-    std::cerr << "pdmpm: run failed: " << e.what() << "\n";
-    return 3;
-  } catch (const std::exception& e) {
-    std::cerr << "pdmpm: internal error: " << e.what() << "\n";
-    return 4;
-  }
+  } catch (const OtherProcessFailed& e) {
+    return e.exit_status();  // the process that failed has reported it
+  } catch (const SharedFailure& e) {
+    shared = true;
+    try {
+      std::rethrow_if_nested(e);
+    } catch (...) {
+      error = std::current_exception();
+    }
+  } catch (...) {}
+  const auto [status, text] = describe(error);
+  const bool distributed = comm && comm->size() > 1;
+  if (!distributed || shared || (status == 2 && comm->rank() == 0)) std::cerr << "pdmpm: " << text << "\n";
+  if (!distributed || shared || status == 2) return status;
+  std::cerr << fmt::format("pdmpm (process {} of {}): {}\n", comm->rank(), comm->size(), text);
+  comm->abort(status);
 }
 
 }  // namespace
 
-int run_command(const RunArgs& args) {
+int run_command(const RunArgs& args, const dist::Communicator* comm) {
+  // Process 0 of a distributed run writes the outputs and reports; the others are quiet.
+  const bool speaks = !comm || comm->rank() == 0;
   try {
     sim::RunOptions opt;
     parse_checkpoint_interval(args.checkpoint_every, opt);
     const io::Scene scene = io::parse_scene(args.scene);
     opt.out_dir = args.out.empty() ? std::filesystem::path("out") / scene.id : std::filesystem::path(args.out);
     opt.threads = args.threads;
-    opt.progress = !args.quiet;
+    opt.progress = !args.quiet && speaks;
     opt.write_fields = !args.no_fields;
+    opt.comm = comm;
+    if (!speaks) {
+      sim::install_interrupt_handlers();  // a signal stops every process after the same step
+      return sim::run_scene(scene, opt).exit_code;
+    }
     return run_and_report(scene, opt, args.quiet);
   } catch (...) {
-    return report_error();
+    return report_error(comm);
   }
 }
 
@@ -114,7 +148,7 @@ int resume_command(const ResumeArgs& args) {
       std::cerr << fmt::format("pdmpm: resuming {} after step {} in {}\n", scene.id, opt.resume->info.step, args.dir);
     return run_and_report(scene, opt, args.quiet);
   } catch (...) {
-    return report_error();
+    return report_error(nullptr);
   }
 }
 

@@ -30,6 +30,10 @@ class OtherProcesses {
   // this process's terms to `partial`, which arrives holding the processes' before it;
   // `partial` returns the totals, the same on every process.
   virtual void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const = 0;
+  // The largest of every process's `local` (exact in any order).
+  virtual double max(double local) const = 0;
+  // The global index of this process's first own particle (own particles are contiguous).
+  virtual Index first_global() const = 0;
 };
 
 enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };
@@ -119,6 +123,11 @@ struct Particles {
       add_own(s.data());
     return s;
   }
+
+  // The largest of `local` over the processes of a run.
+  double max_everywhere(double local) const { return remote ? remote->max(local) : local; }
+  // A real particle's index in the whole body (its index here in a one-process run).
+  Index global_index(Index i) const { return remote ? remote->first_global() + i : i; }
 
   // The particle whose state a particle carries: itself, a mirror ghost's owner, or
   // itself for a remote ghost (its entries are the remote owner's, received).

@@ -1,7 +1,10 @@
 #include "solver/dist/communicator.hpp"
 
+#include <cstdlib>
 #include <limits>
 #include <stdexcept>
+
+#include "solver/core/error.hpp"
 
 namespace pdmpm::dist {
 
@@ -76,6 +79,24 @@ std::vector<std::int64_t> Communicator::gather(const std::vector<std::int64_t>& 
 
 void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(comm_);
+}
+
+void Communicator::abort(int status) const {
+  MPI_Abort(comm_, status);
+  std::exit(status);  // MPI_Abort does not return; a one-process run without MPI gets here
+}
+
+void agree_on_failure(const Communicator& comm, const std::exception_ptr& failure) {
+  const int status = failure ? exit_status_of(failure) : 0;
+  const int worst = static_cast<int>(comm.max(status));
+  if (failure) {
+    try {
+      std::rethrow_exception(failure);
+    } catch (...) {
+      std::throw_with_nested(SharedFailure());
+    }
+  }
+  if (worst != 0) throw OtherProcessFailed(worst);
 }
 
 }  // namespace pdmpm::dist

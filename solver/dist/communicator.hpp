@@ -4,6 +4,7 @@
 #include <mpi.h>
 
 #include <cstdint>
+#include <exception>
 #include <vector>
 
 namespace pdmpm::dist {
@@ -35,10 +36,18 @@ class Communicator {
   std::vector<double> gather(const std::vector<double>& local) const;
   std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const;
   void barrier() const;
+  // Stops every process of the run with this exit status (MPI_Abort): for an error only
+  // one process met, which would leave the others waiting for it.
+  [[noreturn]] void abort(int status) const;
 
  private:
   MPI_Comm comm_ = MPI_COMM_NULL;
   int rank_ = 0, size_ = 1;
 };
+
+// After a step that only some processes may fail (process 0 opening the outputs):
+// every process learns whether one failed. The one that did throws `failure` nested in
+// a SharedFailure, the others throw OtherProcessFailed with its exit status (core/error.hpp).
+void agree_on_failure(const Communicator& comm, const std::exception_ptr& failure);
 
 }  // namespace pdmpm::dist

@@ -7,7 +7,7 @@ namespace pdmpm::dist {
 
 HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real,
                            const std::vector<Index>& halo)
-    : comm_(comm.handle()), rank_(comm.rank()), ranks_(comm.size()) {
+    : comm_(comm.handle()), rank_(comm.rank()), ranks_(comm.size()), first_global_(own.begin) {
   const int ranks = ranks_;
   // What this process receives: its halo grouped by owner (contiguous, as ranges are).
   std::vector<std::vector<std::int64_t>> asked(ranks);
@@ -81,6 +81,12 @@ void HaloExchange::ordered_sum(double* partial, int n, const std::function<void(
   add_own(partial);
   if (rank_ + 1 < ranks_) MPI_Send(partial, n, MPI_DOUBLE, rank_ + 1, tag, comm_);
   MPI_Bcast(partial, n, MPI_DOUBLE, ranks_ - 1, comm_);
+}
+
+double HaloExchange::max(double local) const {
+  double all = local;
+  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MAX, comm_);
+  return all;
 }
 
 std::int64_t HaloExchange::values_sent() const {

@@ -22,6 +22,8 @@ class HaloExchange final : public core::OtherProcesses {
 
   void fill(double* data, int width) const override;
   void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const override;
+  double max(double local) const override;
+  Index first_global() const override { return first_global_; }
 
   // Values one fill of width 1 sends from this process (the communication volume).
   std::int64_t values_sent() const;
@@ -36,6 +38,7 @@ class HaloExchange final : public core::OtherProcesses {
   };
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
+  Index first_global_ = 0;
   std::vector<Peer> peers_;
   mutable std::vector<std::vector<double>> buffers_;
 };

@@ -104,6 +104,8 @@ class Simulation {
   Eigen::Vector3d angular_momentum() const;
 
   std::int64_t broken_bonds() const { return broken_sides_ / 2; }
+  // Broken bond sides of the real particles (a distributed run sums them over its processes).
+  std::int64_t broken_sides() const { return broken_sides_; }
   std::int64_t contact_pairs() const { return contact_pairs_; }
   const Vec<D>& indenter_force() const { return indenter_force_; }
   double force_seconds() const { return force_seconds_; }      // the model's bond loops

@@ -231,8 +231,7 @@ std::vector<Vec<D>> HybridRun<D>::reactions() const {
 
 template <int D>
 void HybridRun<D>::frame(std::int64_t step, double t) {
-  auto* writer = rec_.fields();
-  if (!writer) return;
+  if (!rec_.writes_fields()) return;
   const Index n = p_.n_real;
   auto wants = [&](const char* name) { return wants_field(scene_, name); };
   std::vector<io::Field> fields;
@@ -267,7 +266,7 @@ void HybridRun<D>::frame(std::int64_t step, double t) {
     fields.push_back({"eq_plastic_strain", io::FieldKind::scalar,
                       scalar_field(n, [&](Index i) { return is_pd(i) ? pd_eps[i] : h_.mpm().eq_plastic_strain(i); })});
   }
-  writer->write_frame(step, t, vector_field<D>(n, [&](Index i) { return p_.position(i); }), fields);
+  rec_.write_frame(step, t, vector_field<D>(n, [&](Index i) { return p_.position(i); }), fields);
 }
 
 // Unstable: non-finite energies, kinetic + internal energy far above what the

@@ -134,8 +134,7 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
 
 template <int D>
 void MpmRun<D>::frame(std::int64_t step, double t) {
-  auto* writer = rec_.fields();
-  if (!writer) return;
+  if (!rec_.writes_fields()) return;
   const Index n = p_.n_real;
   auto wants = [&](const char* name) { return wants_field(scene_, name); };
   auto vec3 = [&](auto&& value) { return vector_field<D>(n, value); };
@@ -156,7 +155,7 @@ void MpmRun<D>::frame(std::int64_t step, double t) {
         {"eq_plastic_strain", io::FieldKind::scalar, scalar([&](Index i) { return sim_.eq_plastic_strain(i); })});
   if (wants("failed"))
     fields.push_back({"failed", io::FieldKind::scalar, scalar([&](Index i) { return sim_.failed(i) ? 1.0 : 0.0; })});
-  writer->write_frame(step, t, vec3([&](Index i) { return p_.position(i); }), fields);
+  rec_.write_frame(step, t, vec3([&](Index i) { return p_.position(i); }), fields);
 }
 
 // Unstable: non-finite energies, the stored + kinetic energy far above what the

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/pd/crack_observables.hpp"
 #include "solver/pd/damage.hpp"
 #include "solver/pd/j_samples.hpp"
@@ -30,7 +31,8 @@ class PdRun {
         s_(setup),
         p_(setup.system.particles),
         simulation_(make_simulation(setup)),
-        rec_(scene, options) {}
+        rec_(scene, options),
+        comm_(rec_.distributed() ? options.comm : nullptr) {}
 
   RunResult run();
 
@@ -53,12 +55,22 @@ class PdRun {
     return kinetic_energy_ + internal_energy_ + s_.model->plastic_work() - initial_energy_ - external_work_;
   }
   std::vector<pd::Tensor6> stresses() const;
+  // Whole-body values: over every process of a distributed run (each holds its own
+  // particles' share), the same on each; this process's own otherwise.
+  std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
+  double largest(double local) const { return p_.max_everywhere(local); }
+  std::int64_t broken_bonds() const { return everywhere(simulation_.broken_sides()) / 2; }
+  double max_damage(const std::vector<double>& phi) const {
+    return largest(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
+  }
+  Index particles() const { return s_.ownership ? s_.ownership->global_count : p_.n_real; }
 
   const io::Scene& scene_;
   PdSetup<D>& s_;
   core::Particles<D>& p_;
   pd::Simulation<D> simulation_;
   RunRecorder rec_;
+  const dist::Communicator* comm_;  // null unless distributed
 
   double dt_ = 0.0, dt_sa_ = 0.0, dt_lanczos_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, energy_every_ = 1;
@@ -185,9 +197,9 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
   if constexpr (D == 2) row.push_back(ang[2]);
   if constexpr (D == 3)
     for (int a = 0; a < 3; ++a) row.push_back(ang[a]);
-  row.push_back(static_cast<double>(simulation_.broken_bonds()));
+  row.push_back(static_cast<double>(broken_bonds()));
   const auto phi = pd::local_damage(s_.system);
-  row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
+  row.push_back(max_damage(phi));
   if (plastic()) {
     const auto& ep = *s_.model->eq_plastic_strain();
     row.push_back(s_.model->plastic_work());
@@ -198,9 +210,11 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     for (int a = 0; a < D; ++a) row.push_back(simulation_.indenter_force()[a]);
   for (const auto& c : s_.boundaries.constraints) {
     // Force the support exerts on the body, quasi-static: −Σ V (f + b).
-    Vec<D> r = Vec<D>::Zero();
-    for (Index i : c.particles) r -= p_.volume[i] * (p_.f[i] + p_.b[i]);
-    for (int a = 0; a < D; ++a) row.push_back(r[a]);
+    const auto r = p_.template sum_in_order<D>([&](double* sum) {
+      for (Index i : c.particles)
+        for (int a = 0; a < D; ++a) sum[a] -= p_.volume[i] * (p_.f[i][a] + p_.b[i][a]);
+    });
+    row.insert(row.end(), r.begin(), r.end());
   }
   add_probe_values<D>(s_.probes, p_.u, p_.v, row);
   if constexpr (D == 2)
@@ -217,22 +231,14 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
   rec_.write_history(row);
 }
 
+// Every process of a distributed run builds its own particles' frame (a field may
+// need a halo exchange), the recorder gathers them.
 template <int D>
 void PdRun<D>::frame(std::int64_t step, double t) {
-  auto* writer = rec_.fields();
-  if (!writer) return;
+  if (!rec_.writes_fields()) return;
   const Index n = p_.n_real;
-  auto wants = [&](const char* name) {
-    return std::find(scene_.output.fields.begin(), scene_.output.fields.end(), name) != scene_.output.fields.end();
-  };
-  auto vec3 = [&](const std::vector<Vec<D>>& v) {
-    std::vector<double> out(static_cast<std::size_t>(n) * 3, 0.0);
-    for (Index i = 0; i < n; ++i)
-      for (int a = 0; a < D; ++a) out[3 * i + a] = v[i][a];
-    return out;
-  };
-  std::vector<Vec<D>> pos(n);
-  for (Index i = 0; i < n; ++i) pos[i] = p_.position(i);
+  auto wants = [&](const char* name) { return wants_field(scene_, name); };
+  auto vec3 = [&](const std::vector<Vec<D>>& v) { return vector_field<D>(n, [&](Index i) { return v[i]; }); };
   std::vector<io::Field> fields;
   if (wants("displacement")) fields.push_back({"displacement", io::FieldKind::vector, vec3(p_.u)});
   if (wants("velocity")) fields.push_back({"velocity", io::FieldKind::vector, vec3(p_.v)});
@@ -266,7 +272,7 @@ void PdRun<D>::frame(std::int64_t step, double t) {
   }
   if (wants("eq_plastic_strain"))
     fields.push_back({"eq_plastic_strain", io::FieldKind::scalar, *s_.model->eq_plastic_strain()});
-  writer->write_frame(step, t, vec3(pos), fields);
+  rec_.write_frame(step, t, vector_field<D>(n, [&](Index i) { return p_.position(i); }), fields);
 }
 
 template <int D>
@@ -304,7 +310,7 @@ void PdRun<D>::verlet() {
     }
     if (rec_.history_due(step)) history_row(step, t);
     maybe_frame(step, t);
-    rec_.progress(step, t, simulation_.broken_bonds());
+    rec_.progress(step, t, broken_bonds());
     if (rec_.after_step(step, t)) return;
   }
 }
@@ -346,6 +352,10 @@ nlohmann::json PdRun<D>::summary() const {
   const auto phi = pd::local_damage(sys);
   double umax = 0.0;
   for (Index i = 0; i < p_.n_real; ++i) umax = std::max(umax, p_.u[i].norm());
+  umax = largest(umax);
+  const Index halo = s_.ownership ? static_cast<Index>(s_.ownership->halo.size()) : 0;
+  const double force_seconds = comm_ ? comm_->max(simulation_.force_seconds()) : simulation_.force_seconds();
+  const std::int64_t bond_sides = everywhere(sys.families.n_bonds());
   nlohmann::json dt_est = {{"silling_askari", dt_sa_}};
   if (dt_lanczos_ > 0) dt_est["lanczos"] = dt_lanczos_;
   const bool dynamic = scene_.time.integrator == io::Integrator::verlet;
@@ -360,26 +370,24 @@ nlohmann::json PdRun<D>::summary() const {
       {"spacing", sys.spacing()},
       {"horizon", sys.delta},
       {"horizon_ratio", sys.delta / sys.spacing()},
-      {"particles", p_.n_real},
-      {"ghost_particles", p_.n_ghost()},
-      {"bonds", sys.families.n_bonds() / 2},
-      {"bond_sides", sys.families.n_bonds()},
+      {"particles", particles()},
+      {"ghost_particles", everywhere(p_.n_ghost() - halo)},
+      {"bonds", bond_sides / 2},
+      {"bond_sides", bond_sides},
       {"integrator", dynamic ? "verlet" : "adr"},
       {"dt", dynamic ? dt_ : 1.0},
       {"dt_estimate", dt_est},
       {"end_time", dynamic ? dt_ * static_cast<double>(steps_done_) : 1.0},
-      {"force_time_s", simulation_.force_seconds()},
+      {"force_time_s", force_seconds},  // the slowest process's
       {"contact_time_s", simulation_.contact_seconds()},
       {"bond_updates_per_second",
-       simulation_.force_seconds() > 0
-           ? static_cast<double>(simulation_.bond_evaluations()) / simulation_.force_seconds()
-           : 0.0},
+       force_seconds > 0 ? static_cast<double>(everywhere(simulation_.bond_evaluations())) / force_seconds : 0.0},
       {"bytes_per_bond_side",
        (sizeof(Index) + sizeof(std::uint16_t) + sizeof(std::uint8_t))},  // neighbour, stencil offset, broken flag
       {"metrics",
-       {{"broken_bonds", simulation_.broken_bonds()},
-        {"precrack_cut_bonds", s_.precrack_cut / 2},
-        {"max_damage", phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end())},
+       {{"broken_bonds", broken_bonds()},
+        {"precrack_cut_bonds", everywhere(s_.precrack_cut) / 2},
+        {"max_damage", max_damage(phi)},
         {"max_displacement", umax},
         {"kinetic_energy", kinetic_energy_},
         {"internal_energy", internal_energy_},
@@ -392,6 +400,7 @@ nlohmann::json PdRun<D>::summary() const {
     j["metrics"]["max_eq_plastic_strain"] = ep.empty() ? 0.0 : *std::max_element(ep.begin(), ep.end());
   }
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
+  if (s_.ownership) j["halo_particles"] = everywhere(halo);
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;
     j["metrics"]["adr_residual"] = relax_.residual;
@@ -411,7 +420,8 @@ RunResult PdRun<D>::run() {
   const double t = scene_.time.integrator == io::Integrator::verlet
       ? static_cast<double>(steps_done_) * dt_
       : static_cast<double>(steps_done_) / static_cast<double>(total_steps_);
-  return rec_.finish(steps_done_, t, simulation_.broken_bonds(), p_.n_real, summary());
+  const auto broken = broken_bonds();
+  return rec_.finish(steps_done_, t, broken, particles(), summary());
 }
 
 }  // namespace

@@ -59,6 +59,7 @@ void check_distributable(const io::Scene& s) {
   if (s.crack.enabled) refuse("crack", "crack tracking");
   if (!s.probes.empty()) refuse("probe", "a probe");
   if (!s.j_integrals.empty()) refuse(s.j_integrals.front().key, "a J-integral");
+  if (s.time.integrator == io::Integrator::adr) refuse("time.integrator", "dynamic relaxation (\"adr\")");
 }
 
 }  // namespace

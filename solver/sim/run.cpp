@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "solver/core/error.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/io/output_directory.hpp"
 #include "solver/sim/hybrid_run.hpp"
 #include "solver/sim/mpm_run.hpp"
@@ -14,19 +15,28 @@
 namespace pdmpm::sim {
 namespace {
 
+void refuse_distributed(const io::Scene& scene, const RunOptions& options, const std::string& key,
+                        const std::string& what) {
+  if (options.comm && options.comm->size() > 1)
+    throw InputError(scene.file, key,
+                     what + " does not run distributed yet: start it without mpirun (docs/models/distributed.md)");
+}
+
 template <int D>
 RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
   switch (scene.method) {
     case io::Method::mpm: {
+      refuse_distributed(scene, options, "model.type", "MPM");
       auto setup = build_mpm<D>(scene);
       return run_mpm<D>(scene, setup, options);
     }
     case io::Method::pd: {
-      auto setup = build_pd<D>(scene);
+      auto setup = build_pd<D>(scene, options.comm);
       return run_pd<D>(scene, setup, options);
     }
     case io::Method::hybrid:
       if constexpr (D >= 2) {
+        refuse_distributed(scene, options, "hybrid", "the adaptive SBPD–MPM hybrid");
         auto setup = build_hybrid<D>(scene);
         return run_hybrid<D>(scene, *setup, options);
       }
@@ -37,12 +47,17 @@ RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
 
 }  // namespace
 
-RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary) {
+RunResult uncommitted_run(std::string status, std::string message, nlohmann::json summary) {
   RunResult r;
   r.exit_code = status == "completed" ? 0 : status == "interrupted" ? kExitInterrupted : 3;
   r.status = std::move(status);
   r.message = std::move(message);
   r.summary = std::move(summary);
+  return r;
+}
+
+RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary) {
+  RunResult r = uncommitted_run(std::move(status), std::move(message), std::move(summary));
   {
     std::ofstream js(out.path("summary.json"));
     js << r.summary.dump(2) << '\n';

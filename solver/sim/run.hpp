@@ -12,6 +12,10 @@
 #include "solver/io/output_directory.hpp"
 #include "solver/io/scene.hpp"
 
+namespace pdmpm::dist {
+class Communicator;
+}
+
 namespace pdmpm::sim {
 
 struct Resume;
@@ -26,6 +30,9 @@ struct RunOptions {
   double checkpoint_every_seconds = 0.0;
   std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGINT arrived during this step
   std::shared_ptr<Resume> resume;      // continue this checkpoint's run (pdmpm resume)
+  // The processes of a distributed run (mpirun; PD only): each moves its share of the
+  // body, process 0 writes the outputs. Null or one process: a run of one process.
+  const dist::Communicator* comm = nullptr;
 };
 
 // Exit status of a run stopped by SIGINT/SIGTERM (its checkpoint written, if the run has one).
@@ -41,6 +48,8 @@ struct RunResult {
 // Writes summary.json into the staged output directory and commits it (the last
 // step of every run, PD or MPM); exit code 0 for "completed", 5 for "interrupted", 3 otherwise.
 RunResult commit_run(io::OutputDirectory& out, std::string status, std::string message, nlohmann::json summary);
+// The same result without outputs: the processes of a distributed run other than 0.
+RunResult uncommitted_run(std::string status, std::string message, nlohmann::json summary);
 
 // Throws InputError for problems found while building the model (before any
 // output exists); run-time failures are reported in the result.

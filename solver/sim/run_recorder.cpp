@@ -11,6 +11,7 @@
 
 #include "solver/core/build_info.hpp"
 #include "solver/core/error.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/sim/interrupt.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
@@ -26,9 +27,35 @@ void RunRecorder::plan(std::int64_t total_steps, double time_per_step) {
   frame_steps_ = frame_steps(scene_.output, total_steps, time_per_step);
 }
 
+bool RunRecorder::distributed() const { return options_.comm && options_.comm->size() > 1; }
+bool RunRecorder::writer() const { return !distributed() || options_.comm->rank() == 0; }
+
 void RunRecorder::start(const std::vector<std::string>& columns, int dimension, double progress_end_time,
                         const std::string& counter) {
+  if (distributed()) {
+    state_ = nullptr;
+    no_checkpoint_reason_ = "a distributed run has no checkpoints yet (run the scene as one process to checkpoint it)";
+  }
   check_checkpoint_options();
+  if (!distributed()) {
+    open_outputs(columns, dimension, progress_end_time, counter);
+    return;
+  }
+  // Process 0 opens the outputs; every process learns whether it could, so an output
+  // directory that cannot be written stops them all before the first step.
+  std::exception_ptr failure;
+  if (writer()) {
+    try {
+      open_outputs(columns, dimension, progress_end_time, counter);
+    } catch (...) {
+      failure = std::current_exception();
+    }
+  }
+  dist::agree_on_failure(*options_.comm, failure);
+}
+
+void RunRecorder::open_outputs(const std::vector<std::string>& columns, int dimension, double progress_end_time,
+                               const std::string& counter) {
   out_ = std::make_unique<io::OutputDirectory>(options_.out_dir);
   if (resuming()) {
     open_resumed_outputs(columns, dimension);
@@ -94,7 +121,10 @@ void RunRecorder::write_checkpoint(std::int64_t step, const std::filesystem::pat
 
 bool RunRecorder::after_step(std::int64_t step, double t) {
   if (step == options_.interrupt_at_step) request_interrupt(SIGINT);
-  if (const int signal = interrupt_requested()) {
+  int signal = interrupt_requested();
+  // Every process stops after the same step, whichever received the signal.
+  if (distributed()) signal = static_cast<int>(options_.comm->max(signal));
+  if (signal) {
     clear_interrupt();  // handled: a later run in this process starts afresh
     const char* name = signal == SIGTERM ? "SIGTERM" : "SIGINT";
     if (state_) {
@@ -125,6 +155,23 @@ bool RunRecorder::frame_due(std::int64_t step) {
   return false;
 }
 
+void RunRecorder::write_frame(std::int64_t step, double t, const std::vector<double>& positions,
+                              const std::vector<io::Field>& fields) {
+  if (!options_.write_fields) return;
+  if (!distributed()) {
+    fields_->write_frame(step, t, positions, fields);
+    return;
+  }
+  // Own particles are a contiguous range of the global order: gathered in rank order,
+  // the frame is the one-process frame.
+  const auto& comm = *options_.comm;
+  std::vector<io::Field> all;
+  all.reserve(fields.size());
+  for (const auto& f : fields) all.push_back({f.name, f.kind, comm.gather(f.values)});
+  const auto all_positions = comm.gather(positions);
+  if (fields_) fields_->write_frame(step, t, all_positions, all);
+}
+
 void RunRecorder::stop(std::string status, std::string message) {
   status_ = std::move(status);
   message_ = std::move(message);
@@ -146,12 +193,14 @@ RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t co
        {"steps", steps_done},
        {"steps_requested", total_steps_},
        {"threads", omp_get_max_threads()},
+       {"processes", distributed() ? options_.comm->size() : 1},
        {"wall_time_s", wall},
        {"peak_memory_bytes", peak_memory_bytes()},
        {"particle_steps_per_second",
         wall > 0 ? static_cast<double>(particles) * static_cast<double>(steps_done) / wall : 0.0},
        {"provenance",
         {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}});
+  if (!writer()) return uncommitted_run(status_, message_, std::move(summary));
   RunResult result = commit_run(*out_, status_, message_, std::move(summary));
   // What the committed outputs replace: a periodic checkpoint (the run has ended; one
   // that stopped at a signal has just committed its own) and the staging directory

@@ -9,6 +9,11 @@
 // The adaptor calls the recorder, not the other way round: the loops of the
 // methods differ (Verlet steps, ADR load steps, MPM steps; a hybrid step), and
 // each already knows when it has a row or a frame to give.
+//
+// A distributed run (RunOptions::comm): every process calls the recorder at the
+// same points with the whole body's values in history rows (the adaptor reduces
+// them) and its own particles' in frames (gathered here, in the global order);
+// process 0 alone writes, so the outputs are those of one process.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -63,11 +68,16 @@ class RunRecorder {
   // checkpoint written and status "interrupted".
   bool after_step(std::int64_t step, double t);
 
-  void write_history(const std::vector<double>& row) { history_->write_row(row); }
-  // True once per scheduled frame step (then write it to fields()).
+  void write_history(const std::vector<double>& row) {
+    if (history_) history_->write_row(row);
+  }
+  // True once per scheduled frame step (then give it to write_frame()).
   bool frame_due(std::int64_t step);
-  // Null when fields are not written.
-  io::FieldsWriter* fields() { return fields_.get(); }
+  // False when the run was asked not to write fields (then skip building frames).
+  bool writes_fields() const { return options_.write_fields; }
+  // A frame of this process's particles: positions (3 per particle) and fields.
+  void write_frame(std::int64_t step, double t, const std::vector<double>& positions,
+                   const std::vector<io::Field>& fields);
   void progress(std::int64_t step, double t, std::int64_t count) {
     if (progress_) progress_->update(step, t, count);
   }
@@ -89,6 +99,10 @@ class RunRecorder {
     }
   }
   const std::string& status() const { return status_; }
+  // A run of several processes, and whether this is the one that writes.
+  bool distributed() const;
+  bool writer() const;
+
   const std::string& message() const { return message_; }
 
   // Closes the outputs, writes summary.json — the method's keys plus the keys
@@ -112,6 +126,9 @@ class RunRecorder {
   std::string no_checkpoint_reason_;
   std::chrono::steady_clock::time_point last_checkpoint_;
   double earlier_wall_seconds_ = 0.0;  // a resumed run: the wall time before its checkpoint
+
+  void open_outputs(const std::vector<std::string>& columns, int dimension, double progress_end_time,
+                    const std::string& counter);
 
   std::unique_ptr<io::OutputDirectory> out_;
   std::unique_ptr<io::HistoryWriter> history_;

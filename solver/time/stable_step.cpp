@@ -13,7 +13,7 @@ double silling_askari_step(const pd::System<D>& sys, const pd::Model<D>& model, 
   double worst = 0.0;
   for (Index i = 0; i < sys.n_real(); ++i)
     if (sys.particles.kind[i] == core::ParticleKind::pd) worst = std::max(worst, model.stiffness_row_sum(sys, i));
-  worst += extra_row_sum;
+  worst = sys.particles.max_everywhere(worst) + extra_row_sum;
   if (!(worst > 0.0)) return std::numeric_limits<double>::infinity();
   return std::sqrt(2.0 * sys.material.rho / worst);
 }
@@ -36,19 +36,23 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   const std::vector<Vec<D>> f0 = p.f;
   // A x = M⁻¹K x from a force evaluation at a small displacement along x
   // (strain ~1e-7: linear regime). A is self-adjoint in ⟨x, y⟩ = Σ V_i x_i·y_i.
+  // Dot products and the scale span every process of a distributed run, in the
+  // global order, so each process finds the one-process λ_max to the bit.
   const double amplitude = 1e-7 * sys.spacing();
   auto dot = [&](const std::vector<Vec<D>>& a, const std::vector<Vec<D>>& b) {
-    double s = 0.0;
-    for (Index i = 0; i < n; ++i) s += p.volume[i] * a[i].dot(b[i]);
-    return s;
+    return p.template sum_in_order<1>([&](double* s) {
+      for (Index i = 0; i < n; ++i) s[0] += p.volume[i] * a[i].dot(b[i]);
+    })[0];
   };
   auto apply = [&](const std::vector<Vec<D>>& x, std::vector<Vec<D>>& y) {
     double scale = 0.0;
     for (const auto& xi : x) scale = std::max(scale, xi.cwiseAbs().maxCoeff());
+    scale = p.max_everywhere(scale);
     for (Index i = 0; i < n; ++i) p.u[i] = u0[i] + (amplitude / scale) * x[i];
     p.update_ghosts();
     model.compute_forces(sys, {});
-    for (Index i = 0; i < n; ++i) y[i] = is_pd(i) ? Vec<D>(-(p.f[i] - f0[i]) * (scale / amplitude) / rho) : Vec<D>::Zero();
+    for (Index i = 0; i < n; ++i)
+      y[i] = is_pd(i) ? Vec<D>(-(p.f[i] - f0[i]) * (scale / amplitude) / rho) : Vec<D>::Zero();
   };
 
   // Start from the checkerboard (the highest lattice frequency) plus a small
@@ -56,8 +60,9 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   std::vector<Vec<D>> v(n), v_prev(n, Vec<D>::Zero()), w(n);
   for (Index i = 0; i < n; ++i) {
     const int parity = p.site[i].sum() & 1;
+    const auto g = static_cast<double>(p.global_index(i));
     for (int a = 0; a < D; ++a)
-      v[i][a] = is_pd(i) ? (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * i + a) : 0.0;
+      v[i][a] = is_pd(i) ? (parity ? 1.0 : -1.0) * (1.0 + 0.1 * a) + 0.01 * std::sin(0.37 * g + a) : 0.0;
   }
   double norm = std::sqrt(dot(v, v));
   for (auto& x : v) x /= norm;
@@ -93,7 +98,8 @@ LanczosResult lanczos_step(pd::System<D>& sys, pd::Model<D>& model, int max_iter
   p.u = u0;
   p.update_ghosts();
   p.f = f_saved;
-  if (!(lambda > 0.0) || !std::isfinite(lambda)) throw RunError("stable step: the Lanczos iteration found no positive stiffness");
+  if (!(lambda > 0.0) || !std::isfinite(lambda))
+    throw RunError("stable step: the Lanczos iteration found no positive stiffness");
   res.lambda_max = lambda;
   res.dt = 2.0 / std::sqrt(lambda);
   return res;

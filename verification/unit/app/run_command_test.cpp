@@ -57,19 +57,21 @@ TEST(Cli, UsageErrorsExitWithTwo) {
   EXPECT_EQ(run_pdmpm("constants --format xml").status, 2);
 }
 
-// Started by mpirun (its environment), the run command refuses before writing anything:
-// every copy would otherwise write the same directory.
-TEST(Cli, AStartUnderMpirunIsRefusedWithNothingWritten) {
+// Started by mpirun (its environment), check and resume refuse before writing anything:
+// they work on one process (only run distributes a scene; verification/mpi/ runs it).
+TEST(Cli, CheckAndResumeUnderMpirunAreRefusedWithNothingWritten) {
   const pdmpm::test::ScratchDir dir("cli_mpirun");
   const auto scene = dir.path() / "plate.toml";
   std::ofstream(scene) << pdmpm::test::SceneText{}.toml();
-  const auto out = dir.path() / "out";
-  const auto r =
-      pdmpm::test::run_command("OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 " + std::string(PDMPM_BINARY_DIR) +
-                               "/pdmpm run " + scene.string() + " --out " + out.string() + " --quiet");
-  EXPECT_EQ(r.status, 2) << r.output;
-  EXPECT_NE(r.output.find("2 processes"), std::string::npos) << r.output;
-  EXPECT_FALSE(fs::exists(out));
+  const std::string launcher = "OMPI_COMM_WORLD_SIZE=2 OMPI_COMM_WORLD_RANK=0 " + std::string(PDMPM_BINARY_DIR);
+  const auto check = pdmpm::test::run_command(launcher + "/pdmpm check " + scene.string());
+  EXPECT_EQ(check.status, 2) << check.output;
+  EXPECT_NE(check.output.find("2 processes"), std::string::npos) << check.output;
+  EXPECT_NE(check.output.find("start check without mpirun"), std::string::npos) << check.output;
+  const auto resume = pdmpm::test::run_command(launcher + "/pdmpm resume " + (dir.path() / "out").string());
+  EXPECT_EQ(resume.status, 2) << resume.output;
+  EXPECT_NE(resume.output.find("start resume without mpirun"), std::string::npos) << resume.output;
+  EXPECT_EQ(std::distance(fs::directory_iterator(dir.path()), fs::directory_iterator{}), 1) << "only the scene";
 }
 
 // A tiny scene of each model in 2D and 3D runs and reports bond updates per second.

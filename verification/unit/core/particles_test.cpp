@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 namespace pdmpm::core {
@@ -20,6 +21,9 @@ class FakeProcesses final : public OtherProcesses {
     for (int k = 0; k < n; ++k) partial[k] += 0.5;
     add_own(partial);
   }
+  // The others' largest value is 7; this process's particles start at global index 40.
+  double max(double local) const override { return std::max(local, 7.0); }
+  Index first_global() const override { return 40; }
 
  private:
   Index n_real_;
@@ -63,6 +67,16 @@ TEST(Particles, SumsContinueThoseOfTheProcessesBefore) {
   EXPECT_EQ((p.sum_in_order<2>(add, {1.0, 1.0})), (std::array<double, 2>{7.0, 10.0}));
   p.remote = std::make_shared<FakeProcesses>(p.n_real);
   EXPECT_EQ((p.sum_in_order<2>(add)), (std::array<double, 2>{6.5, 9.5}));
+}
+
+TEST(Particles, MaximaAndGlobalIndicesSpanTheProcesses) {
+  auto p = store();
+  EXPECT_EQ(p.max_everywhere(3.0), 3.0);
+  EXPECT_EQ(p.global_index(2), 2);
+  p.remote = std::make_shared<FakeProcesses>(p.n_real);
+  EXPECT_EQ(p.max_everywhere(3.0), 7.0);
+  EXPECT_EQ(p.max_everywhere(9.0), 9.0);
+  EXPECT_EQ(p.global_index(2), 42);
 }
 
 }  // namespace
