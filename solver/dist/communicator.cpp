@@ -77,6 +77,28 @@ std::vector<std::int64_t> Communicator::gather(const std::vector<std::int64_t>& 
   return gather_to_root(comm_, rank_, size_, local, MPI_INT64_T);
 }
 
+std::vector<double> Communicator::all_gather(const std::vector<double>& local) const {
+  if (size_ == 1) return local;
+  if (local.size() > static_cast<std::size_t>(std::numeric_limits<int>::max()))
+    throw std::length_error("all_gather: more values on one process than MPI counts in an int");
+  const int n = static_cast<int>(local.size());
+  std::vector<int> counts(size_), offsets(size_);
+  MPI_Allgather(&n, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_);
+  std::int64_t total = 0;
+  for (int r = 0; r < size_; ++r) {
+    if (total > std::numeric_limits<int>::max()) throw std::length_error("all_gather: more values than an int counts");
+    offsets[r] = static_cast<int>(total);
+    total += counts[r];
+  }
+  std::vector<double> all(static_cast<std::size_t>(total));
+  MPI_Allgatherv(local.data(), n, MPI_DOUBLE, all.data(), counts.data(), offsets.data(), MPI_DOUBLE, comm_);
+  return all;
+}
+
+void Communicator::broadcast(std::vector<double>& values, int root) const {
+  if (size_ > 1) MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, root, comm_);
+}
+
 void Communicator::barrier() const {
   if (size_ > 1) MPI_Barrier(comm_);
 }

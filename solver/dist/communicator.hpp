@@ -35,6 +35,10 @@ class Communicator {
   // Every process's `local` values, concatenated in rank order, on rank 0 (empty elsewhere).
   std::vector<double> gather(const std::vector<double>& local) const;
   std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const;
+  // Every process's `local` values, concatenated in rank order, on every process.
+  std::vector<double> all_gather(const std::vector<double>& local) const;
+  // Process `root`'s `values` (the same length everywhere) on every process.
+  void broadcast(std::vector<double>& values, int root) const;
   void barrier() const;
   // Stops every process of the run with this exit status (MPI_Abort): for an error only
   // one process met, which would leave the others waiting for it.

@@ -64,6 +64,8 @@ class PdRun {
     return largest(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
   }
   Index particles() const { return s_.ownership ? s_.ownership->global_count : p_.n_real; }
+  void probe_values(std::vector<double>& row) const;
+  std::vector<core::JSample> j_samples(const Vec<2>& tip, double radius) const;
 
   const io::Scene& scene_;
   PdSetup<D>& s_;
@@ -187,6 +189,53 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
   return false;
 }
 
+// A probe's u and v, sent to every process by the one that owns it.
+template <int D>
+void PdRun<D>::probe_values(std::vector<double>& row) const {
+  if (!comm_) return add_probe_values<D>(s_.probes, p_.u, p_.v, row);
+  for (const auto& probe : s_.probes) {
+    std::vector<double> values(2 * D, 0.0);
+    if (probe.particle >= 0)
+      for (int a = 0; a < D; ++a) values[a] = p_.u[probe.particle][a], values[D + a] = p_.v[probe.particle][a];
+    comm_->broadcast(values, probe.owner);
+    row.insert(row.end(), values.begin(), values.end());
+  }
+}
+
+// The J-integral's samples in a disc: every process's, in the global particle order (each
+// process's own particles in their order, the processes in rank order), on every process,
+// so the domain sum is the one-process sum.
+template <int D>
+std::vector<core::JSample> PdRun<D>::j_samples(const Vec<2>& tip, double radius) const {
+  if constexpr (D != 2) {
+    (void)tip, (void)radius;
+    return {};
+  } else {
+    auto samples = pd::elastic_j_samples(s_.system, tip, radius);
+    if (!comm_) return samples;
+    constexpr int width = 12;  // X (2), V, ∇u (4), P (4), W
+    std::vector<double> flat;
+    flat.reserve(samples.size() * width);
+    for (const auto& o : samples) {
+      flat.insert(flat.end(),
+                  {o.X[0], o.X[1], o.volume, o.grad_u(0, 0), o.grad_u(0, 1), o.grad_u(1, 0), o.grad_u(1, 1),
+                   o.stress(0, 0), o.stress(0, 1), o.stress(1, 0), o.stress(1, 1), o.energy});
+    }
+    const auto all = comm_->all_gather(flat);
+    samples.resize(all.size() / width);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+      const double* v = &all[k * width];
+      auto& o = samples[k];
+      o.X = Vec<2>(v[0], v[1]);
+      o.volume = v[2];
+      o.grad_u << v[3], v[4], v[5], v[6];
+      o.stress << v[7], v[8], v[9], v[10];
+      o.energy = v[11];
+    }
+    return samples;
+  }
+}
+
 template <int D>
 void PdRun<D>::history_row(std::int64_t step, double t) {
   std::vector<double> row{
@@ -216,10 +265,10 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     });
     row.insert(row.end(), r.begin(), r.end());
   }
-  add_probe_values<D>(s_.probes, p_.u, p_.v, row);
+  probe_values(row);
   if constexpr (D == 2)
     add_j_integral_values(
-        s_.j_integrals, [&](const Vec<2>& tip, double r) { return pd::elastic_j_samples(s_.system, tip, r); }, row);
+        s_.j_integrals, [&](const Vec<2>& tip, double r) { return j_samples(tip, r); }, row);
   if (scene_.time.integrator == io::Integrator::adr) {
     row.push_back(static_cast<double>(relax_.iterations));
     row.push_back(relax_.residual);

@@ -57,8 +57,6 @@ void check_distributable(const io::Scene& s) {
   if (s.contact.enabled) refuse("model.contact", "short-range contact");
   if (s.indenter) refuse("indenter", "an indenter");
   if (s.crack.enabled) refuse("crack", "crack tracking");
-  if (!s.probes.empty()) refuse("probe", "a probe");
-  if (!s.j_integrals.empty()) refuse(s.j_integrals.front().key, "a J-integral");
   if (s.time.integrator == io::Integrator::adr) refuse("time.integrator", "dynamic relaxation (\"adr\")");
 }
 
@@ -69,14 +67,23 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   PdSetup<D> out;
   auto& sys = out.system;
   sys.particles = fill_body<D>(s);
+  // Probes and J-integral rings are placed in the whole body (before it is distributed).
+  out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
+  out.j_integrals = j_integral_outputs<D>(s, sys.particles.x0, sys.particles.n_real);
   const bool distributed = comm && comm->size() > 1;
   // Counts over the whole body, for the checks that a region or pre-crack acts somewhere.
   const auto everywhere = [&](std::int64_t local) { return distributed ? comm->sum(local) : local; };
   if (distributed) {
     check_distributable(s);
     out.ownership.emplace();
+    const Index n = sys.particles.n_real;
     sys.particles = dist::distribute<D>(*comm, sys.particles, pd::family_ratio(s.partial_volume, s.delta, s.spacing),
                                         *out.ownership);
+    for (auto& probe : out.probes) {
+      const Index g = probe.particle;
+      probe.owner = dist::owner_rank(g, n, comm->size());
+      probe.particle = out.ownership->own.contains(g) ? g - out.ownership->own.begin : -1;
+    }
   }
 
   sys.setting = s.setting;
@@ -169,8 +176,6 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
                                               s.contact.max_distance, s.contact.bonded_pairs},
                         c);
   }
-  out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
-  out.j_integrals = j_integral_outputs<D>(s, sys.particles.x0, sys.particles.n_real);
   if (s.crack.enabled) {
     out.crack =
         pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};

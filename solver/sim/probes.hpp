@@ -12,7 +12,8 @@ namespace pdmpm::sim {
 
 struct Probe {
   std::string name;
-  Index particle = -1;
+  Index particle = -1;  // its index in the store; -1 where another process owns it
+  int owner = 0;        // the process that owns it (a distributed run)
 };
 
 // Throws InputError(probe[k].point) if no real particle lies within √D Δx of a point.
