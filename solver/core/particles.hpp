@@ -34,6 +34,11 @@ class OtherProcesses {
   virtual double max(double local) const = 0;
   // The global index of this process's first own particle (own particles are contiguous).
   virtual Index first_global() const = 0;
+  // Per-bond-side state (lps_plastic's plastic extension): for every bond side i→j of this
+  // store whose j is a remote ghost, `reverse[i→j]` receives the value `sides` holds at j→i
+  // on j's process (and this process's `sides[i→j]` goes to it). Needs the families
+  // (dist::HaloExchange::index_bond_sides).
+  virtual void fill_reverse_sides(const double* sides, double* reverse) const = 0;
 };
 
 enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };

@@ -16,6 +16,7 @@ core::Particles<D> distribute(const Communicator& comm, const core::Particles<D>
   auto exchange = std::make_shared<HaloExchange>(comm, body.n_real, ownership.own, local.n_real, ownership.halo);
   ownership.values_sent = exchange->values_sent();
   ownership.neighbours = exchange->neighbours();
+  ownership.exchange = exchange;
   local.remote = std::move(exchange);
   return local;
 }

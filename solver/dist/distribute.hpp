@@ -4,21 +4,24 @@
 // (solver/dist/halo_exchange.hpp). Every process builds the whole body's
 // particles first (positions only; families and bonds, the bulk of the memory,
 // are built for its own particles alone).
+#include <memory>
 #include <vector>
 
 #include "solver/core/particles.hpp"
 #include "solver/dist/communicator.hpp"
 #include "solver/dist/decomposition.hpp"
+#include "solver/dist/halo_exchange.hpp"
 
 namespace pdmpm::dist {
 
 // Where a process's particles sit in the whole body.
 struct Ownership {
-  Index global_count = 0;        // real particles of the whole body
-  OwnedRange own;                // its own particles' global indices
-  std::vector<Index> halo;       // its remote ghosts' global indices, in store order
-  std::int64_t values_sent = 0;  // values it sends per exchanged scalar
-  int neighbours = 0;            // processes it exchanges with
+  Index global_count = 0;                  // real particles of the whole body
+  OwnedRange own;                          // its own particles' global indices
+  std::vector<Index> halo;                 // its remote ghosts' global indices, in store order
+  std::int64_t values_sent = 0;            // values it sends per exchanged scalar
+  int neighbours = 0;                      // processes it exchanges with
+  std::shared_ptr<HaloExchange> exchange;  // the store's `remote`
 };
 
 // This process's store of `body` (which must have no ghosts), with the halo every

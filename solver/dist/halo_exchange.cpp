@@ -1,5 +1,6 @@
 #include "solver/dist/halo_exchange.hpp"
 
+#include <algorithm>
 #include <map>
 #include <stdexcept>
 
@@ -7,7 +8,13 @@ namespace pdmpm::dist {
 
 HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real,
                            const std::vector<Index>& halo)
-    : comm_(comm.handle()), rank_(comm.rank()), ranks_(comm.size()), first_global_(own.begin) {
+    : comm_(comm.handle()),
+      rank_(comm.rank()),
+      ranks_(comm.size()),
+      first_global_(own.begin),
+      n_body_(n),
+      n_real_(n_real),
+      halo_(halo) {
   const int ranks = ranks_;
   // What this process receives: its halo grouped by owner (contiguous, as ranges are).
   std::vector<std::vector<std::int64_t>> asked(ranks);
@@ -81,6 +88,60 @@ void HaloExchange::ordered_sum(double* partial, int n, const std::function<void(
   add_own(partial);
   if (rank_ + 1 < ranks_) MPI_Send(partial, n, MPI_DOUBLE, rank_ + 1, tag, comm_);
   MPI_Bcast(partial, n, MPI_DOUBLE, ranks_ - 1, comm_);
+}
+
+void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const std::vector<Index>& neighbor) {
+  struct Side {
+    Index low, high;  // the pair's global indices
+    BondIndex side;
+  };
+  std::map<int, std::vector<Side>> by_rank;
+  for (Index i = 0; i + 1 < static_cast<Index>(offsets.size()); ++i)
+    for (BondIndex b = offsets[i]; b < offsets[i + 1]; ++b) {
+      const Index j = neighbor[b];
+      if (j < n_real_) continue;
+      const Index gi = first_global_ + i, gj = halo_[j - n_real_];
+      by_rank[owner_rank(gj, n_body_, ranks_)].push_back({std::min(gi, gj), std::max(gi, gj), b});
+    }
+  std::vector<int> count(ranks_, 0), theirs(ranks_, 0);
+  shared_sides_.clear();
+  for (auto& [q, sides] : by_rank) {
+    std::sort(sides.begin(), sides.end(),
+              [](const Side& a, const Side& b) { return a.low != b.low ? a.low < b.low : a.high < b.high; });
+    SharedSides shared{q, {}};
+    for (const auto& side : sides) shared.sides.push_back(side.side);
+    count[q] = static_cast<int>(shared.sides.size());
+    shared_sides_.push_back(std::move(shared));
+  }
+  MPI_Alltoall(count.data(), 1, MPI_INT, theirs.data(), 1, MPI_INT, comm_);
+  if (count != theirs)
+    throw std::logic_error("halo exchange: processes disagree on the bond sides they share (asymmetric families)");
+  side_buffers_.assign(2 * shared_sides_.size(), {});
+}
+
+void HaloExchange::fill_reverse_sides(const double* sides, double* reverse) const {
+  std::vector<MPI_Request> requests;
+  requests.reserve(2 * shared_sides_.size());
+  constexpr int tag = 2;
+  for (std::size_t k = 0; k < shared_sides_.size(); ++k) {
+    auto& in = side_buffers_[2 * k + 1];
+    in.resize(shared_sides_[k].sides.size());
+    requests.emplace_back();
+    MPI_Irecv(in.data(), static_cast<int>(in.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_, &requests.back());
+  }
+  for (std::size_t k = 0; k < shared_sides_.size(); ++k) {
+    auto& out = side_buffers_[2 * k];
+    out.clear();
+    for (BondIndex b : shared_sides_[k].sides) out.push_back(sides[b]);
+    requests.emplace_back();
+    MPI_Isend(out.data(), static_cast<int>(out.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_,
+              &requests.back());
+  }
+  MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
+  for (std::size_t k = 0; k < shared_sides_.size(); ++k) {
+    const auto& in = side_buffers_[2 * k + 1];
+    for (std::size_t s = 0; s < in.size(); ++s) reverse[shared_sides_[k].sides[s]] = in[s];
+  }
 }
 
 double HaloExchange::max(double local) const {

@@ -24,6 +24,14 @@ class HaloExchange final : public core::OtherProcesses {
   void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const override;
   double max(double local) const override;
   Index first_global() const override { return first_global_; }
+  void fill_reverse_sides(const double* sides, double* reverse) const override;
+
+  // The bond sides that cross to another process, from the store's families (`offsets`
+  // per own particle, `neighbor` per bond side): with each neighbouring process, the
+  // sides i→j whose j it owns, in the order of the pair {global i, global j} — which
+  // orders its reverse sides j→i alike, so the two lists match with no message. Throws
+  // std::logic_error if a process counts a different number of sides shared with this one.
+  void index_bond_sides(const std::vector<BondIndex>& offsets, const std::vector<Index>& neighbor);
 
   // Values one fill of width 1 sends from this process (the communication volume).
   std::int64_t values_sent() const;
@@ -36,9 +44,16 @@ class HaloExchange final : public core::OtherProcesses {
     Index recv_first = 0;     // first local index of the ghosts it owns
     Index recv_count = 0;
   };
+  struct SharedSides {
+    int rank = 0;
+    std::vector<BondIndex> sides;  // this process's sides to particles `rank` owns, in pair order
+  };
   MPI_Comm comm_;
   int rank_ = 0, ranks_ = 1;
-  Index first_global_ = 0;
+  Index first_global_ = 0, n_body_ = 0, n_real_ = 0;
+  std::vector<Index> halo_;  // global index of each remote ghost
+  std::vector<SharedSides> shared_sides_;
+  mutable std::vector<std::vector<double>> side_buffers_;  // send, then receive, per entry of shared_sides_
   std::vector<Peer> peers_;
   mutable std::vector<std::vector<double>> buffers_;
 };

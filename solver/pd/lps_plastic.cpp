@@ -12,8 +12,12 @@ namespace pdmpm::pd {
 
 template <int D>
 void LpsPlastic<D>::initialise(const System<D>& sys) {
-  if (sys.particles.n_ghost() > 0)
+  // Remote ghosts (a distributed run's halo) carry their owners' state; mirror ghosts
+  // (symmetry planes) would need the reverse bonds of families no process holds.
+  const auto& ghosts = sys.particles.ghost_owner;
+  if (std::any_of(ghosts.begin(), ghosts.end(), [](Index o) { return o != core::Particles<D>::kRemoteOwner; }))
     throw std::invalid_argument("lps_plastic does not support ghost particles (symmetry planes) yet");
+  remote_ = sys.particles.remote;
   setting_ = sys.setting;
   k_ = lps_coefficients(sys.setting, sys.material);
   bulk_ = sys.material.bulk();
@@ -25,14 +29,16 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   zeta_ = D == 1 ? 1.0 : D == 2 ? 8.0 / 3.0 : 5.0;
   three_g_ = k_.B / zeta_;
   plastic_modulus_ = hardening_ ? hardening_->hardening_modulus(sys.material.E) : 0.0;
-  const Index n = sys.particles.n_real;
+  const Index n = sys.particles.n_real, all = sys.particles.size();
   shell_ = isotropy_weights(sys);
   shell_.resize(shell_.size() + kernels::lanes, 0.0);  // whole-block loads (kernels::per_offset)
   m_ = reference_weighted_volumes(sys);
   m_.resize(n);
-  inv_m_.resize(n);
-  inv_md_.resize(n);
+  inv_m_.assign(all, 0.0);
+  inv_md_.assign(all, 0.0);
   for (Index i = 0; i < n; ++i) set_weighted_volumes(sys, i);
+  sys.particles.fill_ghosts(inv_m_);  // the stable step's row sums read the halo's
+  sys.particles.fill_ghosts(inv_md_);
   theta_.assign(n, 0.0);
   theta_c_.assign(n, 0.0);
   sigma_eq_.assign(n, 0.0);
@@ -48,6 +54,10 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   for (Index i = 0; i < n; ++i)
     for (BondIndex b = f.begin(i); b < f.end(i); ++b) {
       const Index j = f.neighbor[b];
+      if (j >= n) {  // a remote ghost: its side j→i is another process's (fill_reverse_sides)
+        reverse_[b] = kRemoteSide;
+        continue;
+      }
       const auto first = f.shape.begin() + f.begin(j), last = f.shape.begin() + f.end(j);
       reverse_[b] = static_cast<BondIndex>(std::lower_bound(first, last, opposite[f.shape[b]]) - f.shape.begin());
     }
@@ -57,7 +67,7 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   reverse_plastic_.assign(f.n_bonds() + kernels::lanes, 0.0);
   offsets_.assign(f.offsets.begin(), f.offsets.begin() + n + 1);
   scale_.assign(n, 1.0);
-  particle_rows_.assign(4 * static_cast<std::size_t>(n), 0.0);
+  particle_rows_.assign(4 * static_cast<std::size_t>(all), 0.0);
   mean_term_.assign(n, 0.0);
   volumetric_energy_.assign(n, 0.0);
   axial_plastic_.assign(D == 2 ? n : 0, 0.0);
@@ -65,7 +75,7 @@ void LpsPlastic<D>::initialise(const System<D>& sys) {
   out_of_plane_.assign(D == 2 ? n : 0, 0.0);
   eq_plastic_.assign(n, 0.0);
   ductile_damage_.assign(sys.ductile_failure.enabled ? n : 0, 0.0);
-  failing_.assign(sys.ductile_failure.enabled ? n : 0, 0);
+  failing_.assign(sys.ductile_failure.enabled ? all : 0, 0);
   plastic_work_ = plastic_work_trial_ = 0.0;
 }
 
@@ -287,12 +297,14 @@ std::int64_t LpsPlastic<D>::compute_forces(System<D>& sys, const ForceRequest& r
   a.scale = scale_.data();
   a.B = k_.B;
   std::int64_t newly = kernels::lps_plastic_extension<D>(a);
+  if (remote_) remote_->fill(particle_rows_.data(), 4);  // the force pass reads the halo's rows
 
   // Pass 2: pair forces (t_ij + t_ji) β V_j y/|y|; the break-after-force rule.
   newly += kernels::lps_plastic_forces<D>(a);
   if (req.break_bonds && sys.ductile_failure.enabled) newly += fail_particles(sys);
-  double work = 0.0;
-  for (Index i = 0; i < n; ++i) work += dissipation_[i];
+  const auto [work] = p.template sum_in_order<1>([&](double* sum) {
+    for (Index i = 0; i < n; ++i) sum[0] += dissipation_[i];
+  });
   plastic_work_trial_ = plastic_work_ + work;
   return newly;
 }
@@ -320,18 +332,37 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
     }
     any += failing_[i];
   }
+  // A distributed run: which halo particles fail (their owners found it); a bond to one
+  // breaks on this side here, on the other side there.
+  const Index n = sys.particles.n_real;
+  if (remote_) {
+    std::vector<double> fails(failing_.begin(), failing_.end());
+    remote_->fill(fails.data(), 1);
+    for (Index h = n; h < sys.particles.size(); ++h) {
+      failing_[h] = fails[h] != 0.0;
+      any += failing_[h];
+    }
+  }
   if (any == 0) return 0;
   std::int64_t broken = 0;
   auto& flags = sys.bonds.flags.trial;
+  const auto cut = [&](BondIndex side) {
+    if (!(flags[side] & kBondBroken)) {
+      flags[side] |= kBondBroken;
+      ++broken;
+    }
+  };
   for (Index k = 0; k < n_owners; ++k) {
     const Index i = fam.particle(k);
-    if (!failing_[i]) continue;
-    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b)
-      for (BondIndex side : {b, reverse_[b]})
-        if (!(flags[side] & kBondBroken)) {
-          flags[side] |= kBondBroken;
-          ++broken;
-        }
+    for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
+      const Index j = sys.families.neighbor[b];
+      if (failing_[i]) {
+        cut(b);
+        if (reverse_[b] != kRemoteSide) cut(reverse_[b]);
+      } else if (j >= n && failing_[j]) {
+        cut(b);
+      }
+    }
   }
   return broken;
 }
@@ -345,9 +376,12 @@ void LpsPlastic<D>::accept() {
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i)
     if (trial_flowed_[i])
-      for (BondIndex b = offsets_[i]; b < offsets_[i + 1]; ++b)
-        reverse_plastic_[reverse_[b]] = plastic_ext_.committed[b] = plastic_ext_.trial[b];
+      for (BondIndex b = offsets_[i]; b < offsets_[i + 1]; ++b) {
+        plastic_ext_.committed[b] = plastic_ext_.trial[b];
+        if (reverse_[b] != kRemoteSide) reverse_plastic_[reverse_[b]] = plastic_ext_.committed[b];
+      }
   std::fill(trial_flowed_.begin(), trial_flowed_.end(), 0);
+  if (remote_) remote_->fill_reverse_sides(plastic_ext_.committed.data(), reverse_plastic_.data());
   eq_plastic_.accept();
   axial_plastic_.accept();
   ductile_damage_.accept();

@@ -43,13 +43,18 @@
 // σ_zz = K(θ + ε_zz) − 4G q_e = 0, so q_e = (θ/2 − q_p)/(1 + x + 4G/3K) while the bonds scale
 // by 1/(1 + x): the return solves one scalar equation for x (Newton, monotone on a convex
 // function), and P = 6G q_e. Below yield both equal elastic 2D LPS (P = κ₂θ).
-// No ghost particles (symmetry planes): the reverse bond of a ghost is not in any family.
+// No mirror ghosts (symmetry planes): the reverse bond of a ghost is not in any family.
+// Remote ghosts (a distributed run, solver/dist/): the reverse side of a bond to one is on
+// its owner's process, whose committed p arrives after every accept (fill_reverse_sides);
+// the force pass's per-particle rows and the failing particles come with the halo.
 //
 // Ductile failure (optional, System::ductile_failure; Noorian et al. eqs 8–9): ε_f = d₀ exp(cη)
 // with η the triaxiality of the particle's own stress; rule "strain" fails when ε̄_p ≥ ε_f,
 // "accumulated" when ∫ dε̄_p/ε_f ≥ 1. A particle that fails loses every bond, both sides, at
 // the end of the evaluation that found it (its bonds act once more, as with LAMMPS' rule for
 // the critical stretch), so the check reads the state the forces came from.
+#include <limits>
+#include <memory>
 #include <optional>
 
 #include "solver/pd/constants.hpp"
@@ -122,11 +127,13 @@ class LpsPlastic final : public Model<D> {
   std::vector<double> m_, inv_m_, theta_;  // weighted volume, 1/m, dilatation (real particles)
   std::vector<double> theta_c_;            // θ_c = (d/m_d) Σ ωβcV|ξ|e, the deviatoric split's dilatation
   std::vector<double> inv_md_;             // 1/m_d, m_d = Σ ωβc r² V (deviatoric weighted volume)
-  std::vector<double> shell_;        // c per stencil offset (1 without the isotropy correction), padded for the kernels
-  std::vector<BondIndex> reverse_;   // bond j→i of each bond i→j
-  Committed<double> plastic_ext_;    // p per bond side (padded for the kernels)
-  Committed<double> eq_plastic_;     // ε̄_p per particle
-  std::vector<double> dissipation_;  // V_i σ̄ Δε̄_p of the last evaluation (J)
+  std::vector<double> shell_;       // c per stencil offset (1 without the isotropy correction), padded for the kernels
+  std::vector<BondIndex> reverse_;  // bond j→i of each bond i→j (kRemoteSide: on another process)
+  static constexpr BondIndex kRemoteSide = std::numeric_limits<BondIndex>::max();
+  std::shared_ptr<const core::OtherProcesses> remote_;    // a distributed run's other processes
+  Committed<double> plastic_ext_;                         // p per bond side (padded for the kernels)
+  Committed<double> eq_plastic_;                          // ε̄_p per particle
+  std::vector<double> dissipation_;                       // V_i σ̄ Δε̄_p of the last evaluation (J)
   double plastic_work_ = 0.0, plastic_work_trial_ = 0.0;  // Σ_i V_i ∫ σ̄ dε̄_p (J), committed / trial
   std::vector<double> sigma_eq_;                          // σ̄ per particle, last evaluation
   std::vector<double> reverse_plastic_;  // committed p of each bond side's reverse bond (padded): the force pass's copy

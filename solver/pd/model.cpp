@@ -25,12 +25,14 @@ Tensor6 Model<D>::own_stress(const System<D>&, Index) const {
 namespace {
 
 template <template <int> class M>
-ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic, bool symmetry_planes) {
+ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plastic, bool symmetry_planes,
+              bool distributed) {
   return {std::move(name),
           state_based,
           pair_potential,
           plastic,
           symmetry_planes,
+          distributed,
           [] { return std::make_unique<M<1>>(); },
           [] { return std::make_unique<M<2>>(); },
           [] { return std::make_unique<M<3>>(); }};
@@ -39,10 +41,11 @@ ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plas
 }  // namespace
 
 const std::vector<ModelInfo>& model_table() {
-  //                        name           state-based pair potential plastic symmetry planes
-  static const std::vector<ModelInfo> table = {
-      row<Pmb>("pmb", false, true, false, true), row<Lps>("lps", true, false, false, true),
-      row<LpsPlastic>("lps_plastic", true, false, true, false), row<Hpd>("hpd", true, false, false, false)};
+  //                        name           state-based pair potential plastic symmetry planes distributed
+  static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false, true, true),
+                                               row<Lps>("lps", true, false, false, true, true),
+                                               row<LpsPlastic>("lps_plastic", true, false, true, false, true),
+                                               row<Hpd>("hpd", true, false, false, false, false)};
   return table;
 }
 

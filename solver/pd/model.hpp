@@ -79,6 +79,9 @@ struct ModelInfo {
   // Symmetry planes (ghost particles) work: false where a ghost's missing family matters
   // (plastic state on bond sides, sub-horizons built from both ends' families).
   bool symmetry_planes = true;
+  // Runs over several processes (solver/dist/): false where a force reads state beyond the
+  // halo of one horizon (HPD's sub-horizons reach two).
+  bool distributed = true;
   std::function<std::unique_ptr<Model<1>>()> make1;
   std::function<std::unique_ptr<Model<2>>()> make2;
   std::function<std::unique_ptr<Model<3>>()> make3;

@@ -60,9 +60,12 @@ class PdRun {
   std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
   double largest(double local) const { return p_.max_everywhere(local); }
   std::int64_t broken_bonds() const { return everywhere(simulation_.broken_sides()) / 2; }
-  double max_damage(const std::vector<double>& phi) const {
-    return largest(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
+  // The largest of a per-particle array's own particles' entries (0 if none).
+  double max_over_own(const std::vector<double>& a) const {
+    const auto end = a.begin() + std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(a.size()), p_.n_real);
+    return a.begin() == end ? 0.0 : *std::max_element(a.begin(), end);
   }
+  double max_damage(const std::vector<double>& phi) const { return largest(max_over_own(phi)); }
   Index particles() const { return s_.ownership ? s_.ownership->global_count : p_.n_real; }
   void probe_values(std::vector<double>& row) const;
   std::vector<core::JSample> j_samples(const Vec<2>& tip, double radius) const;
@@ -252,7 +255,7 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
   if (plastic()) {
     const auto& ep = *s_.model->eq_plastic_strain();
     row.push_back(s_.model->plastic_work());
-    row.push_back(ep.empty() ? 0.0 : *std::max_element(ep.begin(), ep.end()));
+    row.push_back(largest(max_over_own(ep)));
   }
   if (s_.contact) row.push_back(static_cast<double>(simulation_.contact_pairs()));
   if (s_.indenter)
@@ -446,7 +449,7 @@ nlohmann::json PdRun<D>::summary() const {
   if (plastic()) {
     const auto& ep = *s_.model->eq_plastic_strain();
     j["metrics"]["plastic_work"] = s_.model->plastic_work();
-    j["metrics"]["max_eq_plastic_strain"] = ep.empty() ? 0.0 : *std::max_element(ep.begin(), ep.end());
+    j["metrics"]["max_eq_plastic_strain"] = largest(max_over_own(ep));
   }
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (s_.ownership) j["halo_particles"] = everywhere(halo);

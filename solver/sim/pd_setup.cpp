@@ -51,8 +51,8 @@ void check_distributable(const io::Scene& s) {
   const auto refuse = [&](const std::string& key, const std::string& what) {
     throw InputError(s.file, key, what + " is not available in a distributed run yet (run it as one process)");
   };
-  if (!pd::model_info(s.model).symmetry_planes)
-    refuse("model.type", "model \"" + s.model + "\" (it takes no ghost particles)");
+  if (!pd::model_info(s.model).distributed)
+    refuse("model.type", "model \"" + s.model + "\" (its forces reach beyond a horizon's halo)");
   if (!s.symmetries.empty()) refuse(s.symmetries.front().key, "a symmetry plane");
   if (s.contact.enabled) refuse("model.contact", "short-range contact");
   if (s.indenter) refuse("indenter", "an indenter");
@@ -107,6 +107,7 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   bc::add_symmetry_ghosts<D>(sys.particles, planes, pd::family_ratio(s.partial_volume, s.delta, s.spacing) * s.spacing,
                              s.file);
   sys.connect();
+  if (out.ownership) out.ownership->exchange->index_bond_sides(sys.families.offsets, sys.families.neighbor);
 
   for (const auto& pc : s.precracks) {
     pd::CrackSurface<D> crack;

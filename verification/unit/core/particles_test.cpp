@@ -24,6 +24,7 @@ class FakeProcesses final : public OtherProcesses {
   // The others' largest value is 7; this process's particles start at global index 40.
   double max(double local) const override { return std::max(local, 7.0); }
   Index first_global() const override { return 40; }
+  void fill_reverse_sides(const double*, double*) const override {}
 
  private:
   Index n_real_;
