@@ -5,22 +5,20 @@ namespace pdmpm::bc {
 template <int D>
 Vec<D> Indenter<D>::add_forces(core::Particles<D>& p, double t) const {
   const Vec<D> c = center(t);
-  Vec<D> total = Vec<D>::Zero();
-  for (Index i = 0; i < p.n_real; ++i) {
-    const Vec<D> d = p.position(i) - c;
-    const double r = d.norm();
-    if (r >= radius || r == 0.0) continue;
-    const double magnitude = stiffness * (radius - r) * (radius - r);
-    const Vec<D> F = (magnitude / r) * d;
-    if (force_density) {
-      p.b[i] += F;
-      total -= F * p.volume[i];
-    } else {
-      p.b[i] += F / p.volume[i];
-      total -= F;
+  // The total in the global particle order: a distributed run's is the one-process total.
+  const auto total = p.template sum_in_order<D>([&](double* sum) {
+    for (Index i = 0; i < p.n_real; ++i) {
+      const Vec<D> d = p.position(i) - c;
+      const double r = d.norm();
+      if (r >= radius || r == 0.0) continue;
+      const double magnitude = stiffness * (radius - r) * (radius - r);
+      const Vec<D> F = (magnitude / r) * d;
+      const Vec<D> on_indenter = force_density ? Vec<D>(F * p.volume[i]) : F;
+      p.b[i] += force_density ? F : Vec<D>(F / p.volume[i]);
+      for (int a = 0; a < D; ++a) sum[a] -= on_indenter[a];
     }
-  }
-  return total;
+  });
+  return Eigen::Map<const Vec<D>>(total.data());
 }
 
 template struct Indenter<1>;

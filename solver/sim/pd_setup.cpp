@@ -55,7 +55,6 @@ void check_distributable(const io::Scene& s) {
     refuse("model.type", "model \"" + s.model + "\" (its forces reach beyond a horizon's halo)");
   if (!s.symmetries.empty()) refuse(s.symmetries.front().key, "a symmetry plane");
   if (s.contact.enabled) refuse("model.contact", "short-range contact");
-  if (s.indenter) refuse("indenter", "an indenter");
   if (s.crack.enabled) refuse("crack", "crack tracking");
   if (s.time.integrator == io::Integrator::adr) refuse("time.integrator", "dynamic relaxation (\"adr\")");
 }
