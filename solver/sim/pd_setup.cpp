@@ -56,7 +56,6 @@ void check_distributable(const io::Scene& s) {
   if (!s.symmetries.empty()) refuse(s.symmetries.front().key, "a symmetry plane");
   if (s.contact.enabled) refuse("model.contact", "short-range contact");
   if (s.crack.enabled) refuse("crack", "crack tracking");
-  if (s.time.integrator == io::Integrator::adr) refuse("time.integrator", "dynamic relaxation (\"adr\")");
 }
 
 }  // namespace
