@@ -2,6 +2,7 @@
 // The subcommands of pdmpm. Each returns the process exit status:
 // 0 success, 2 bad input (nothing written), 3 run failed (unstable, not converged),
 // 4 internal error, 5 interrupted by SIGINT/SIGTERM (checkpoint written where the run has one).
+#include <cstdint>
 #include <string>
 
 namespace pdmpm::dist {
@@ -15,6 +16,7 @@ struct RunArgs {
   int threads = 0;
   bool quiet = false, no_fields = false;
   std::string checkpoint_every;  // steps ("5000") or wall time ("30m"); empty: none
+  std::int64_t stop_after = 0;   // stop after this step as an interrupt would; 0: run to the end
 };
 // `comm`: the processes of a distributed run (mpirun); process 0 writes and speaks.
 int run_command(const RunArgs& args, const dist::Communicator* comm = nullptr);
@@ -25,7 +27,7 @@ struct ResumeArgs {
   bool quiet = false;
   std::string checkpoint_every;
 };
-int resume_command(const ResumeArgs& args);
+int resume_command(const ResumeArgs& args, const dist::Communicator* comm = nullptr);
 
 struct CheckArgs {
   std::string scene;

@@ -23,6 +23,10 @@ int main(int argc, char** argv) {
   cmd_run->add_option("--checkpoint-every", run.checkpoint_every,
                       "Write DIR/checkpoint.pdmpm every N steps (\"5000\") or wall time (\"90s\", \"30m\", \"2h\"); "
                       "SIGINT/SIGTERM always write one and exit with status 5");
+  cmd_run
+      ->add_option("--stop-after", run.stop_after,
+                   "Stop after this step as a SIGINT would (checkpoint written, exit status 5): a run split into jobs")
+      ->check(CLI::PositiveNumber);
 
   pdmpm::app::ResumeArgs resume;
   auto* cmd_resume = app.add_subcommand(
@@ -62,18 +66,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e) == 0 ? 0 : 2;
   }
-  // Under mpirun (several processes) a run is distributed (docs/models/distributed.md);
-  // resume and check work on one process.
+  // Under mpirun (several processes) a run or resume is distributed
+  // (docs/models/distributed.md); check works on one process.
   if (const auto launch = pdmpm::dist::launch_from_environment(); launch.processes > 1) {
-    if (*cmd_run) {
+    if (*cmd_run || *cmd_resume) {
       const pdmpm::dist::MpiSession session(argc, argv);
       const pdmpm::dist::Communicator comm;
-      return pdmpm::app::run_command(run, &comm);
+      return *cmd_run ? pdmpm::app::run_command(run, &comm) : pdmpm::app::resume_command(resume, &comm);
     }
-    if (!*cmd_const) {
+    if (*cmd_check) {
       if (launch.rank == 0)
-        std::cerr << "error: pdmpm was started as " << launch.processes << " processes (mpirun): only the run "
-                  << "command distributes a scene; start " << (*cmd_resume ? "resume" : "check") << " without mpirun\n";
+        std::cerr << "error: pdmpm was started as " << launch.processes << " processes (mpirun): check runs on "
+                  << "one process; start check without mpirun\n";
       return 2;
     }
   }

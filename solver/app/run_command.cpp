@@ -123,6 +123,7 @@ int run_command(const RunArgs& args, const dist::Communicator* comm) {
     opt.threads = args.threads;
     opt.progress = !args.quiet && speaks;
     opt.write_fields = !args.no_fields;
+    opt.interrupt_at_step = args.stop_after;
     opt.comm = comm;
     if (!speaks) {
       sim::install_interrupt_handlers();  // a signal stops every process after the same step
@@ -134,21 +135,48 @@ int run_command(const RunArgs& args, const dist::Communicator* comm) {
   }
 }
 
-int resume_command(const ResumeArgs& args) {
+int resume_command(const ResumeArgs& args, const dist::Communicator* comm) {
+  const bool speaks = !comm || comm->rank() == 0;
   try {
     sim::RunOptions opt;
     parse_checkpoint_interval(args.checkpoint_every, opt);
-    opt.resume = sim::read_checkpoint(args.dir);
+    if (comm && comm->size() > 1) {
+      // Each process reads its own file, process 0 first (a checkpoint of another build or
+      // process count is reported once); a missing or damaged file stops them all.
+      for (const bool first : {true, false}) {
+        std::exception_ptr failure;
+        if (first == (comm->rank() == 0)) {
+          try {
+            opt.resume = sim::read_checkpoint(args.dir, comm->rank(), comm->size());
+          } catch (...) {
+            failure = std::current_exception();
+          }
+        }
+        dist::agree_on_failure(*comm, failure);
+      }
+      const auto step = static_cast<double>(opt.resume->info.step);
+      if (comm->min(step) != comm->max(step))
+        throw InputError(args.dir, "",
+                         "the processes' checkpoint files are of different steps (a run killed while writing them): "
+                         "run the scene again");
+    } else {
+      opt.resume = sim::read_checkpoint(args.dir);
+    }
     const io::Scene scene = io::parse_scene_text(opt.resume->info.scene_text, opt.resume->info.scene_file);
     opt.out_dir = args.dir;
     opt.threads = args.threads;
-    opt.progress = !args.quiet;
+    opt.progress = !args.quiet && speaks;
     opt.write_fields = opt.resume->info.write_fields;
+    opt.comm = comm;
+    if (!speaks) {
+      sim::install_interrupt_handlers();
+      return sim::run_scene(scene, opt).exit_code;
+    }
     if (!args.quiet)
       std::cerr << fmt::format("pdmpm: resuming {} after step {} in {}\n", scene.id, opt.resume->info.step, args.dir);
     return run_and_report(scene, opt, args.quiet);
   } catch (...) {
-    return report_error(nullptr);
+    return report_error(comm);
   }
 }
 

@@ -16,10 +16,15 @@ void sync_info(core::StateArchive& a, CheckpointInfo& info) {
   a.sync("run/outputs", info.outputs);
   a.sync("run/step", info.step);
   a.sync("run/write_fields", info.write_fields);
+  a.sync("run/processes", info.processes);
 }
 
-std::shared_ptr<Resume> read_checkpoint(const std::filesystem::path& dir) {
-  const auto path = dir / kCheckpointFile;
+std::string checkpoint_file(int rank) {
+  return rank == 0 ? std::string(kCheckpointFile) : fmt::format("{}.{}", kCheckpointFile, rank);
+}
+
+std::shared_ptr<Resume> read_checkpoint(const std::filesystem::path& dir, int rank, int processes) {
+  const auto path = dir / checkpoint_file(rank);
   if (!std::filesystem::exists(path))
     throw InputError(path.string(), "",
                      "no checkpoint here: a run writes one when it is interrupted (SIGINT, SIGTERM) or with "
@@ -37,6 +42,11 @@ std::shared_ptr<Resume> read_checkpoint(const std::filesystem::path& dir) {
                      fmt::format("written by pdmpm {}, this is pdmpm {}: resume it with the build that wrote it, or "
                                  "run the scene again",
                                  r->info.build, build_info::git_sha()));
+  if (r->info.processes != processes)
+    throw InputError(path.string(), "",
+                     fmt::format("written by a run of {} process(es): resume it with {}", r->info.processes,
+                                 r->info.processes == 1 ? std::string("pdmpm resume (no mpirun)")
+                                                        : fmt::format("mpirun -n {} pdmpm resume", r->info.processes)));
   return r;
 }
 

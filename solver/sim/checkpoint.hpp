@@ -16,6 +16,9 @@
 namespace pdmpm::sim {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.pdmpm";
+// A distributed run's checkpoint is one file per process: process 0's is kCheckpointFile
+// (with the outputs), process r's "checkpoint.pdmpm.r" beside it (its share of the state).
+std::string checkpoint_file(int rank);
 
 struct CheckpointInfo {
   std::string build;       // build_info::git_sha() of the build that wrote it
@@ -24,6 +27,7 @@ struct CheckpointInfo {
   std::string outputs;     // "" next to the checkpoint, else the staging directory's name in DIR
   std::int64_t step = 0;   // the last step done
   bool write_fields = true;
+  std::int64_t processes = 1;  // the processes that wrote it (one file each)
 };
 void sync_info(core::StateArchive& a, CheckpointInfo& info);
 
@@ -35,9 +39,10 @@ struct Resume {
   std::filesystem::path outputs() const { return info.outputs.empty() ? dir : dir / info.outputs; }
 };
 
-// Reads DIR/checkpoint.pdmpm. InputError naming the file when it is missing, is
-// not a checkpoint, is damaged, or was written by another build.
-std::shared_ptr<Resume> read_checkpoint(const std::filesystem::path& dir);
+// Reads DIR/checkpoint.pdmpm, or process `rank`'s file of a distributed run of
+// `processes`. InputError naming the file when it is missing, is not a checkpoint, is
+// damaged, was written by another build or by another number of processes.
+std::shared_ptr<Resume> read_checkpoint(const std::filesystem::path& dir, int rank = 0, int processes = 1);
 
 // Writes the archive to `path` atomically (a temporary file in the same directory, then a rename).
 void write_checkpoint_file(const core::StateArchive& a, const std::filesystem::path& path);

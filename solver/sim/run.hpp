@@ -28,7 +28,7 @@ struct RunOptions {
   // Periodic checkpoints (sim/checkpoint.hpp) every so many steps and/or wall seconds; 0: none.
   std::int64_t checkpoint_every_steps = 0;
   double checkpoint_every_seconds = 0.0;
-  std::int64_t interrupt_at_step = 0;  // tests: behave as if SIGINT arrived during this step
+  std::int64_t interrupt_at_step = 0;  // behave as if SIGINT arrived during this step (--stop-after, tests)
   std::shared_ptr<Resume> resume;      // continue this checkpoint's run (pdmpm resume)
   // The processes of a distributed run (mpirun; PD only): each moves its share of the
   // body, process 0 writes the outputs. Null or one process: a run of one process.

@@ -30,16 +30,24 @@ void RunRecorder::plan(std::int64_t total_steps, double time_per_step) {
 bool RunRecorder::distributed() const { return options_.comm && options_.comm->size() > 1; }
 bool RunRecorder::writer() const { return !distributed() || options_.comm->rank() == 0; }
 
+std::filesystem::path RunRecorder::own_checkpoint() const {
+  return options_.out_dir / checkpoint_file(distributed() ? options_.comm->rank() : 0);
+}
+
 void RunRecorder::start(const std::vector<std::string>& columns, int dimension, double progress_end_time,
                         const std::string& counter) {
-  if (distributed()) {
-    state_ = nullptr;
-    no_checkpoint_reason_ = "a distributed run has no checkpoints yet (run the scene as one process to checkpoint it)";
-  }
   check_checkpoint_options();
+  if (resuming())  // the frames after the checkpoint's step are still to come (on every process)
+    next_frame_ = static_cast<std::size_t>(std::upper_bound(frame_steps_.begin(), frame_steps_.end(), resume_step()) -
+                                           frame_steps_.begin());
   if (!distributed()) {
     open_outputs(columns, dimension, progress_end_time, counter);
     return;
+  }
+  if (!writer() && resuming()) {  // what process 0 reads of its own file, read here too
+    std::int64_t rows = 0;
+    options_.resume->state.sync("recorder/history_rows", rows);
+    options_.resume->state.sync("recorder/wall_seconds", earlier_wall_seconds_);
   }
   // Process 0 opens the outputs; every process learns whether it could, so an output
   // directory that cannot be written stops them all before the first step.
@@ -93,9 +101,6 @@ void RunRecorder::open_resumed_outputs(const std::vector<std::string>& columns, 
   if (options_.write_fields)
     fields_ = std::make_unique<io::FieldsWriter>(io::FieldsWriter::resume(
         source / "fields.h5", out_->path("fields.h5"), out_->path("fields.xdmf"), "fields.h5", dimension, a));
-  const std::int64_t step = resume_step();
-  next_frame_ =
-      static_cast<std::size_t>(std::upper_bound(frame_steps_.begin(), frame_steps_.end(), step) - frame_steps_.begin());
 }
 
 void RunRecorder::restore() {
@@ -107,9 +112,15 @@ void RunRecorder::restore() {
 
 void RunRecorder::write_checkpoint(std::int64_t step, const std::filesystem::path& path, const std::string& outputs) {
   core::StateArchive a(core::StateArchive::Mode::save);
-  CheckpointInfo info{build_info::git_sha(), scene_.file, scene_.text, outputs, step, options_.write_fields};
+  CheckpointInfo info{build_info::git_sha(),
+                      scene_.file,
+                      scene_.text,
+                      outputs,
+                      step,
+                      options_.write_fields,
+                      distributed() ? options_.comm->size() : 1};
   sync_info(a, info);
-  auto rows = static_cast<std::int64_t>(history_->rows());
+  auto rows = history_ ? static_cast<std::int64_t>(history_->rows()) : 0;
   double wall = earlier_wall_seconds_ + seconds_since(t0_);
   a.sync("recorder/history_rows", rows);
   a.sync("recorder/wall_seconds", wall);
@@ -128,8 +139,9 @@ bool RunRecorder::after_step(std::int64_t step, double t) {
     clear_interrupt();  // handled: a later run in this process starts afresh
     const char* name = signal == SIGTERM ? "SIGTERM" : "SIGINT";
     if (state_) {
-      // Into the staging directory: the checkpoint is committed with the outputs it continues.
-      write_checkpoint(step, out_->path(kCheckpointFile), "");
+      // Into the staging directory: the checkpoint is committed with the outputs it continues
+      // (the other processes' files go beside the outputs: a commit moves files one by one).
+      write_checkpoint(step, writer() ? out_->path(kCheckpointFile) : own_checkpoint(), "");
       stop("interrupted",
            fmt::format("interrupted by {} after step {} (t = {:.6g}); continue with: pdmpm resume {}", name, step, t,
                        options_.out_dir.string()));
@@ -141,9 +153,11 @@ bool RunRecorder::after_step(std::int64_t step, double t) {
     return true;
   }
   if (!state_ || step >= total_steps_) return false;
-  const bool due = (options_.checkpoint_every_steps > 0 && step % options_.checkpoint_every_steps == 0) ||
+  bool due = (options_.checkpoint_every_steps > 0 && step % options_.checkpoint_every_steps == 0) ||
       (options_.checkpoint_every_seconds > 0.0 && seconds_since(last_checkpoint_) >= options_.checkpoint_every_seconds);
-  if (due) write_checkpoint(step, options_.out_dir / kCheckpointFile, out_->staging().filename().string());
+  // A wall-time interval: when one process's clock says so, every process writes its file.
+  if (distributed()) due = options_.comm->max(due ? 1.0 : 0.0) > 0.0;
+  if (due) write_checkpoint(step, own_checkpoint(), writer() ? out_->staging().filename().string() : std::string());
   return false;
 }
 
@@ -200,13 +214,16 @@ RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t co
         wall > 0 ? static_cast<double>(particles) * static_cast<double>(steps_done) / wall : 0.0},
        {"provenance",
         {{"git_sha", build_info::git_sha()}, {"compiler", build_info::compiler()}, {"flags", build_info::flags()}}}});
-  if (!writer()) return uncommitted_run(status_, message_, std::move(summary));
+  std::error_code ignored;
+  if (!writer()) {
+    if (status_ != "interrupted") std::filesystem::remove(own_checkpoint(), ignored);
+    return uncommitted_run(status_, message_, std::move(summary));
+  }
   RunResult result = commit_run(*out_, status_, message_, std::move(summary));
   // What the committed outputs replace: a periodic checkpoint (the run has ended; one
   // that stopped at a signal has just committed its own) and the staging directory
   // of a killed run that this one continued.
-  std::error_code ignored;
-  if (status_ != "interrupted") std::filesystem::remove(options_.out_dir / kCheckpointFile, ignored);
+  if (status_ != "interrupted") std::filesystem::remove(own_checkpoint(), ignored);
   if (resuming() && options_.resume->info.outputs.starts_with(".partial-"))
     std::filesystem::remove_all(options_.out_dir / options_.resume->info.outputs, ignored);
   return result;

@@ -13,7 +13,8 @@
 // A distributed run (RunOptions::comm): every process calls the recorder at the
 // same points with the whole body's values in history rows (the adaptor reduces
 // them) and its own particles' in frames (gathered here, in the global order);
-// process 0 alone writes, so the outputs are those of one process.
+// process 0 alone writes the outputs, so they are those of one process. Each
+// process writes its own checkpoint file (sim/checkpoint.hpp), at the same steps.
 #include <chrono>
 #include <cstdint>
 #include <functional>
@@ -111,6 +112,8 @@ class RunRecorder {
 
  private:
   void check_checkpoint_options() const;
+  // This process's checkpoint file in the output directory (sim/checkpoint.hpp).
+  std::filesystem::path own_checkpoint() const;
   void open_resumed_outputs(const std::vector<std::string>& columns, int dimension);
   // Writes a checkpoint after `step` to `path`; `outputs` says where its outputs are.
   void write_checkpoint(std::int64_t step, const std::filesystem::path& path, const std::string& outputs);

@@ -5,9 +5,11 @@ For each scene of verification/mpi/scenes/ the scene runs as one process and as 
 processes (oversubscribed on a small machine). history.csv and fields.xdmf must be
 equal byte for byte, every dataset and attribute of fields.h5 bit for bit, and
 summary.json equal in every key but the machine's (wall times, rates, memory,
-processes, halo). Then what a distributed run refuses: an MPM scene, checkpoints,
-an output directory it cannot write — each with the exit status of one process, one
-message, nothing written, and no process left waiting.
+processes, halo). A run stopped after a step with periodic checkpoints and resumed
+under mpirun must write the same outputs, and a resume with another process count
+is refused. Then what a distributed run refuses: an MPM scene, an output directory
+it cannot write — each with the exit status of one process, one message, nothing
+written, and no process left waiting.
 
 Writes one gate per scene and one for the refusals, and a table, into RESULTS_DIR
 ($PDMPM_RESULTS_DIR if set) for the report's "distributed" section.
@@ -134,6 +136,37 @@ def claim(scene, processes):
             "bonds broken")
 
 
+def resumption(pdmpm, processes, scene, work, results):
+    """Stopped after step 250 of 500 (checkpoints every 100), resumed: the one-process outputs."""
+    one, out = work / f"{scene.stem}_1", work / f"{scene.stem}_resumed_{processes}"
+    wrong = 0
+    r = run([pdmpm, "run", str(scene), "--out", str(out), "--quiet", "--checkpoint-every", "100", "--stop-after", "250"],
+            processes)
+    files = sorted(p.name for p in out.glob("checkpoint.pdmpm*"))
+    wrong += not check(r.returncode == 5 and len(files) == processes,
+                       f"{scene.stem}: stopped after step 250 under {processes} processes, status {r.returncode} (5), "
+                       f"{len(files)} checkpoint files ({processes})")
+    other = processes + 1
+    r = run([pdmpm, "resume", str(out), "--quiet"], other)
+    errors = [line for line in r.stderr.splitlines() if line.startswith("pdmpm")]
+    wrong += not check(r.returncode == 2 and len(errors) == 1 and f"mpirun -n {processes}" in r.stderr,
+                       f"{scene.stem}: resumed with {other} processes: status {r.returncode} (2), one message naming "
+                       f"{processes}" + ("" if r.returncode == 2 and len(errors) == 1 else f"\n{r.stderr}"))
+    r = run([pdmpm, "resume", str(out), "--quiet"], processes)
+    if not check(r.returncode == 0, f"{scene.stem}: resumed under {processes} processes exits 0"
+                 + (f"\n{r.stderr}" if r.returncode else "")):
+        wrong += 1
+    else:
+        _, _, differ, _ = compare_outputs(one, out, f"{scene.stem} resumed, {processes} processes", processes)
+        wrong += differ
+        wrong += not check(not list(out.glob("checkpoint.pdmpm*")), f"{scene.stem}: no checkpoint left after resuming")
+    write_gate(results, f"distributed.run_command.resume.{processes}",
+               f"`mpirun -n {processes} pdmpm run {scene.name} --checkpoint-every 100 --stop-after 250`, then "
+               f"`mpirun -n {processes} pdmpm resume`, shall write the outputs of an uninterrupted one-process run "
+               "byte for byte, refuse a resume with another process count and leave no checkpoint (items that "
+               "differ or fail)", wrong, REASON)
+
+
 def refusals(pdmpm, processes, scenes_dir, work, results):
     wrong = 0
     mpm = scenes_dir.parent.parent / "scenes" / "mpm" / "plate_tension_j2.toml"
@@ -142,8 +175,6 @@ def refusals(pdmpm, processes, scenes_dir, work, results):
     blocked.write_text("not a directory\n")
     # (what, command, exit status as one process exits, message fragment, output that must not exist)
     cases = [("an MPM scene", [pdmpm, "run", str(mpm), "--out", str(work / "mpm")], 2, "'model.type'", work / "mpm"),
-             ("checkpoints", [pdmpm, "run", str(pd_scene), "--out", str(work / "ckpt"), "--checkpoint-every", "10"],
-              2, "no checkpoints", work / "ckpt"),
              ("an output directory inside a file", [pdmpm, "run", str(pd_scene), "--out", str(blocked / "out")],
               3, "cannot create output directory", None)]
     for what, command, status, fragment, out in cases:
@@ -154,8 +185,7 @@ def refusals(pdmpm, processes, scenes_dir, work, results):
                            f"{what} under {processes} processes: status {r.returncode} ({status}), one message, "
                            "nothing written" + ("" if ok else f"\n{r.stderr}"))
     write_gate(results, f"distributed.run_command.refusals.{processes}",
-               f"Under mpirun -n {processes}, an MPM scene, a checkpoint interval and an output directory that cannot "
-               "be made shall each stop every process with the one-process exit status, one message and nothing "
+               f"Under mpirun -n {processes}, an MPM scene and an output directory that cannot be made shall each stop every process with the one-process exit status, one message and nothing "
                "written (cases that do not)", wrong,
                "Each case either behaves or not; a process left waiting would time out the test.")
 
@@ -170,6 +200,7 @@ def main():
         work = pathlib.Path(tmp)
         for scene in scenes:
             invariance(pdmpm, processes, scene, work, results)
+        resumption(pdmpm, processes, next(s for s in scenes if "plastic" in s.stem), work, results)
         refusals(pdmpm, processes, scenes[0].parent, work, results)
     write_json(results / "data" / "distributed" / f"run_command_{processes}.json", {
         "kind": "table",
