@@ -142,9 +142,10 @@ bool RunRecorder::after_step(std::int64_t step, double t) {
       // Into the staging directory: the checkpoint is committed with the outputs it continues
       // (the other processes' files go beside the outputs: a commit moves files one by one).
       write_checkpoint(step, writer() ? out_->path(kCheckpointFile) : own_checkpoint(), "");
+      const std::string launcher = distributed() ? fmt::format("mpirun -n {} ", options_.comm->size()) : "";
       stop("interrupted",
-           fmt::format("interrupted by {} after step {} (t = {:.6g}); continue with: pdmpm resume {}", name, step, t,
-                       options_.out_dir.string()));
+           fmt::format("interrupted by {} after step {} (t = {:.6g}); continue with: {}pdmpm resume {}", name, step, t,
+                       launcher, options_.out_dir.string()));
     } else {
       stop("interrupted",
            fmt::format("interrupted by {} after step {} (t = {:.6g}); no checkpoint: {}", name, step, t,
