@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <iostream>
-#include <utility>
 
 #include "solver/app/commands.hpp"
 #include "solver/core/error.hpp"
@@ -44,9 +43,12 @@ void parse_checkpoint_interval(const std::string& text, sim::RunOptions& opt) {
   }
 }
 
-int run_and_report(const io::Scene& scene, const sim::RunOptions& opt, bool quiet) {
-  sim::install_interrupt_handlers();
+// Runs the scene; the process that speaks (the only one, or process 0 of a distributed
+// run) reports the end on stderr.
+int run_and_report(const io::Scene& scene, const sim::RunOptions& opt, bool quiet, bool speaks) {
+  sim::install_interrupt_handlers();  // every process: a signal stops them all after the same step
   const sim::RunResult r = sim::run_scene(scene, opt);
+  if (!speaks) return r.exit_code;
   const auto& s = r.summary;
   if (r.exit_code != 0) {
     std::cerr << "pdmpm: " << r.message << "\n";
@@ -66,18 +68,18 @@ int run_and_report(const io::Scene& scene, const sim::RunOptions& opt, bool quie
   return 0;
 }
 
-// An error's exit status and message.
-std::pair<int, std::string> describe(const std::exception_ptr& error) {
+// An error's message (its exit status: exit_status_of, core/error.hpp).
+std::string describe(const std::exception_ptr& error) {
   try {
     std::rethrow_exception(error);
   } catch (const InputError& e) {
-    return {2, fmt::format("error: {}", e.what())};
+    return fmt::format("error: {}", e.what());
   } catch (const core::StateMismatch& e) {
-    return {2, fmt::format("error: the checkpoint does not fit this run: {}", e.what())};
+    return fmt::format("error: the checkpoint does not fit this run: {}", e.what());
   } catch (const RunError& e) {
-    return {3, fmt::format("run failed: {}", e.what())};
+    return fmt::format("run failed: {}", e.what());
   } catch (const std::exception& e) {
-    return {4, fmt::format("internal error: {}", e.what())};
+    return fmt::format("internal error: {}", e.what());
   }
 }
 
@@ -102,7 +104,8 @@ int report_error(const dist::Communicator* comm) {
       error = std::current_exception();
     }
   } catch (...) {}
-  const auto [status, text] = describe(error);
+  const int status = exit_status_of(error);
+  const std::string text = describe(error);
   const bool distributed = comm && comm->size() > 1;
   if (!distributed || shared || (status == 2 && comm->rank() == 0)) std::cerr << "pdmpm: " << text << "\n";
   if (!distributed || shared || status == 2) return status;
@@ -125,11 +128,7 @@ int run_command(const RunArgs& args, const dist::Communicator* comm) {
     opt.write_fields = !args.no_fields;
     opt.interrupt_at_step = args.stop_after;
     opt.comm = comm;
-    if (!speaks) {
-      sim::install_interrupt_handlers();  // a signal stops every process after the same step
-      return sim::run_scene(scene, opt).exit_code;
-    }
-    return run_and_report(scene, opt, args.quiet);
+    return run_and_report(scene, opt, args.quiet, speaks);
   } catch (...) {
     return report_error(comm);
   }
@@ -168,13 +167,9 @@ int resume_command(const ResumeArgs& args, const dist::Communicator* comm) {
     opt.progress = !args.quiet && speaks;
     opt.write_fields = opt.resume->info.write_fields;
     opt.comm = comm;
-    if (!speaks) {
-      sim::install_interrupt_handlers();
-      return sim::run_scene(scene, opt).exit_code;
-    }
-    if (!args.quiet)
+    if (!args.quiet && speaks)
       std::cerr << fmt::format("pdmpm: resuming {} after step {} in {}\n", scene.id, opt.resume->info.step, args.dir);
-    return run_and_report(scene, opt, args.quiet);
+    return run_and_report(scene, opt, args.quiet, speaks);
   } catch (...) {
     return report_error(comm);
   }

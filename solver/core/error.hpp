@@ -29,6 +29,15 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+namespace core {
+// A checkpoint block that is missing, of the wrong size, or a file that is not a
+// checkpoint (core/state_archive.hpp).
+class StateMismatch : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+}  // namespace core
+
 // A distributed run: another process failed and reports why; this one stops with the
 // same exit status (mpirun exits with the first non-zero status of its processes).
 class OtherProcessFailed : public std::runtime_error {
@@ -48,12 +57,15 @@ class SharedFailure : public std::runtime_error {
   SharedFailure() : std::runtime_error("an error every process of the run knows of") {}
 };
 
-// The command line's exit status for an error (solver/app/commands.hpp): 2 bad input,
-// 3 a run that cannot continue, 4 anything else (an internal error).
+// The command line's exit status for an error (solver/app/commands.hpp): 2 bad input
+// (a checkpoint that does not fit included), 3 a run that cannot continue, 4 anything
+// else (an internal error).
 inline int exit_status_of(const std::exception_ptr& error) {
   try {
     std::rethrow_exception(error);
   } catch (const InputError&) {
+    return 2;
+  } catch (const core::StateMismatch&) {
     return 2;
   } catch (const RunError&) {
     return 3;

@@ -24,13 +24,9 @@
 #include <type_traits>
 #include <vector>
 
-namespace pdmpm::core {
+#include "solver/core/error.hpp"  // StateMismatch
 
-// A block that is missing, of the wrong size, or a file that is not a checkpoint.
-class StateMismatch : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+namespace pdmpm::core {
 
 namespace detail {
 template <class T>

@@ -8,14 +8,8 @@ namespace pdmpm::dist {
 
 HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, Index n_real,
                            const std::vector<Index>& halo)
-    : comm_(comm.handle()),
-      rank_(comm.rank()),
-      ranks_(comm.size()),
-      first_global_(own.begin),
-      n_body_(n),
-      n_real_(n_real),
-      halo_(halo) {
-  const int ranks = ranks_;
+    : comm_(comm), first_global_(own.begin), n_body_(n), n_real_(n_real), halo_(halo) {
+  const int ranks = comm_.size();
   // What this process receives: its halo grouped by owner (contiguous, as ranges are).
   std::vector<std::vector<std::int64_t>> asked(ranks);
   std::map<int, Peer> peers;
@@ -34,12 +28,12 @@ HaloExchange::HaloExchange(const Communicator& comm, Index n, OwnedRange own, In
     ask_offset[q] = static_cast<int>(ask_flat.size());
     ask_flat.insert(ask_flat.end(), asked[q].begin(), asked[q].end());
   }
-  MPI_Alltoall(ask_count.data(), 1, MPI_INT, get_count.data(), 1, MPI_INT, comm_);
+  MPI_Alltoall(ask_count.data(), 1, MPI_INT, get_count.data(), 1, MPI_INT, comm_.handle());
   int total = 0;
   for (int q = 0; q < ranks; ++q) get_offset[q] = total, total += get_count[q];
   std::vector<std::int64_t> get_flat(static_cast<std::size_t>(total));
   MPI_Alltoallv(ask_flat.data(), ask_count.data(), ask_offset.data(), MPI_INT64_T, get_flat.data(), get_count.data(),
-                get_offset.data(), MPI_INT64_T, comm_);
+                get_offset.data(), MPI_INT64_T, comm_.handle());
   for (int q = 0; q < ranks; ++q) {
     if (get_count[q] == 0) continue;
     auto& peer = peers[q];
@@ -64,7 +58,7 @@ void HaloExchange::fill(double* data, int width) const {
     if (peer.recv_count > 0) {
       requests.emplace_back();
       MPI_Irecv(data + static_cast<std::size_t>(peer.recv_first) * width, static_cast<int>(peer.recv_count) * width,
-                MPI_DOUBLE, peer.rank, 0, comm_, &requests.back());
+                MPI_DOUBLE, peer.rank, 0, comm_.handle(), &requests.back());
     }
   }
   for (std::size_t k = 0; k < peers_.size(); ++k) {
@@ -75,7 +69,7 @@ void HaloExchange::fill(double* data, int width) const {
     for (std::size_t s = 0; s < peer.send.size(); ++s)
       for (int c = 0; c < width; ++c) buf[s * width + c] = data[static_cast<std::size_t>(peer.send[s]) * width + c];
     requests.emplace_back();
-    MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peer.rank, 0, comm_, &requests.back());
+    MPI_Isend(buf.data(), static_cast<int>(buf.size()), MPI_DOUBLE, peer.rank, 0, comm_.handle(), &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
 }
@@ -84,10 +78,10 @@ void HaloExchange::ordered_sum(double* partial, int n, const std::function<void(
   // A chain: latency grows with the process count (one message per process per sum),
   // the price of the one-process bits; docs/models/distributed.md.
   constexpr int tag = 1;
-  if (rank_ > 0) MPI_Recv(partial, n, MPI_DOUBLE, rank_ - 1, tag, comm_, MPI_STATUS_IGNORE);
+  if (comm_.rank() > 0) MPI_Recv(partial, n, MPI_DOUBLE, comm_.rank() - 1, tag, comm_.handle(), MPI_STATUS_IGNORE);
   add_own(partial);
-  if (rank_ + 1 < ranks_) MPI_Send(partial, n, MPI_DOUBLE, rank_ + 1, tag, comm_);
-  MPI_Bcast(partial, n, MPI_DOUBLE, ranks_ - 1, comm_);
+  if (comm_.rank() + 1 < comm_.size()) MPI_Send(partial, n, MPI_DOUBLE, comm_.rank() + 1, tag, comm_.handle());
+  MPI_Bcast(partial, n, MPI_DOUBLE, comm_.size() - 1, comm_.handle());
 }
 
 void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const std::vector<Index>& neighbor) {
@@ -101,9 +95,9 @@ void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const
       const Index j = neighbor[b];
       if (j < n_real_) continue;
       const Index gi = first_global_ + i, gj = halo_[j - n_real_];
-      by_rank[owner_rank(gj, n_body_, ranks_)].push_back({std::min(gi, gj), std::max(gi, gj), b});
+      by_rank[owner_rank(gj, n_body_, comm_.size())].push_back({std::min(gi, gj), std::max(gi, gj), b});
     }
-  std::vector<int> count(ranks_, 0), theirs(ranks_, 0);
+  std::vector<int> count(comm_.size(), 0), theirs(comm_.size(), 0);
   shared_sides_.clear();
   for (auto& [q, sides] : by_rank) {
     std::sort(sides.begin(), sides.end(),
@@ -113,7 +107,7 @@ void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const
     count[q] = static_cast<int>(shared.sides.size());
     shared_sides_.push_back(std::move(shared));
   }
-  MPI_Alltoall(count.data(), 1, MPI_INT, theirs.data(), 1, MPI_INT, comm_);
+  MPI_Alltoall(count.data(), 1, MPI_INT, theirs.data(), 1, MPI_INT, comm_.handle());
   if (count != theirs)
     throw std::logic_error("halo exchange: processes disagree on the bond sides they share (asymmetric families)");
   side_buffers_.assign(2 * shared_sides_.size(), {});
@@ -127,14 +121,15 @@ void HaloExchange::fill_reverse_sides(const double* sides, double* reverse) cons
     auto& in = side_buffers_[2 * k + 1];
     in.resize(shared_sides_[k].sides.size());
     requests.emplace_back();
-    MPI_Irecv(in.data(), static_cast<int>(in.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_, &requests.back());
+    MPI_Irecv(in.data(), static_cast<int>(in.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_.handle(),
+              &requests.back());
   }
   for (std::size_t k = 0; k < shared_sides_.size(); ++k) {
     auto& out = side_buffers_[2 * k];
     out.clear();
     for (BondIndex b : shared_sides_[k].sides) out.push_back(sides[b]);
     requests.emplace_back();
-    MPI_Isend(out.data(), static_cast<int>(out.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_,
+    MPI_Isend(out.data(), static_cast<int>(out.size()), MPI_DOUBLE, shared_sides_[k].rank, tag, comm_.handle(),
               &requests.back());
   }
   MPI_Waitall(static_cast<int>(requests.size()), requests.data(), MPI_STATUSES_IGNORE);
@@ -144,11 +139,7 @@ void HaloExchange::fill_reverse_sides(const double* sides, double* reverse) cons
   }
 }
 
-double HaloExchange::max(double local) const {
-  double all = local;
-  MPI_Allreduce(&local, &all, 1, MPI_DOUBLE, MPI_MAX, comm_);
-  return all;
-}
+double HaloExchange::max(double local) const { return comm_.max(local); }
 
 std::int64_t HaloExchange::values_sent() const {
   std::int64_t n = 0;

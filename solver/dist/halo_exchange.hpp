@@ -48,8 +48,7 @@ class HaloExchange final : public core::OtherProcesses {
     int rank = 0;
     std::vector<BondIndex> sides;  // this process's sides to particles `rank` owns, in pair order
   };
-  MPI_Comm comm_;
-  int rank_ = 0, ranks_ = 1;
+  Communicator comm_;
   Index first_global_ = 0, n_body_ = 0, n_real_ = 0;
   std::vector<Index> halo_;  // global index of each remote ghost
   std::vector<SharedSides> shared_sides_;

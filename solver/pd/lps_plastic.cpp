@@ -335,13 +335,15 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
   // A distributed run: which halo particles fail (their owners found it); a bond to one
   // breaks on this side here, on the other side there.
   const Index n = sys.particles.n_real;
+  std::int64_t halo_failing = 0;
   if (remote_) {
     std::vector<double> fails(failing_.begin(), failing_.end());
     remote_->fill(fails.data(), 1);
     for (Index h = n; h < sys.particles.size(); ++h) {
       failing_[h] = fails[h] != 0.0;
-      any += failing_[h];
+      halo_failing += failing_[h];
     }
+    any += halo_failing;
   }
   if (any == 0) return 0;
   std::int64_t broken = 0;
@@ -354,6 +356,7 @@ std::int64_t LpsPlastic<D>::fail_particles(System<D>& sys) {
   };
   for (Index k = 0; k < n_owners; ++k) {
     const Index i = fam.particle(k);
+    if (!failing_[i] && halo_failing == 0) continue;
     for (BondIndex b = sys.families.begin(i); b < sys.families.end(i); ++b) {
       const Index j = sys.families.neighbor[b];
       if (failing_[i]) {

@@ -58,14 +58,12 @@ class PdRun {
   // Whole-body values: over every process of a distributed run (each holds its own
   // particles' share), the same on each; this process's own otherwise.
   std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
-  double largest(double local) const { return p_.max_everywhere(local); }
-  std::int64_t broken_bonds() const { return everywhere(simulation_.broken_sides()) / 2; }
-  // The largest of a per-particle array's own particles' entries (0 if none).
-  double max_over_own(const std::vector<double>& a) const {
-    const auto end = a.begin() + std::min<std::ptrdiff_t>(static_cast<std::ptrdiff_t>(a.size()), p_.n_real);
-    return a.begin() == end ? 0.0 : *std::max_element(a.begin(), end);
+  double largest(double local) const { return comm_ ? comm_->max(local) : local; }
+  // The largest entry of a per-real-particle array over the whole body (0 if empty).
+  double largest(const std::vector<double>& a) const {
+    return largest(a.empty() ? 0.0 : *std::max_element(a.begin(), a.end()));
   }
-  double max_damage(const std::vector<double>& phi) const { return largest(max_over_own(phi)); }
+  std::int64_t broken_bonds() const { return everywhere(simulation_.broken_sides()) / 2; }
   Index particles() const { return s_.ownership ? s_.ownership->global_count : p_.n_real; }
   void probe_values(std::vector<double>& row) const;
   std::vector<core::JSample> j_samples(const Vec<2>& tip, double radius) const;
@@ -251,11 +249,11 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     for (int a = 0; a < 3; ++a) row.push_back(ang[a]);
   row.push_back(static_cast<double>(broken_bonds()));
   const auto phi = pd::local_damage(s_.system);
-  row.push_back(max_damage(phi));
+  row.push_back(largest(phi));
   if (plastic()) {
     const auto& ep = *s_.model->eq_plastic_strain();
     row.push_back(s_.model->plastic_work());
-    row.push_back(largest(max_over_own(ep)));
+    row.push_back(largest(ep));
   }
   if (s_.contact) row.push_back(static_cast<double>(simulation_.contact_pairs()));
   if (s_.indenter)
@@ -439,7 +437,7 @@ nlohmann::json PdRun<D>::summary() const {
       {"metrics",
        {{"broken_bonds", broken_bonds()},
         {"precrack_cut_bonds", everywhere(s_.precrack_cut) / 2},
-        {"max_damage", max_damage(phi)},
+        {"max_damage", largest(phi)},
         {"max_displacement", umax},
         {"kinetic_energy", kinetic_energy_},
         {"internal_energy", internal_energy_},
@@ -449,7 +447,7 @@ nlohmann::json PdRun<D>::summary() const {
   if (plastic()) {
     const auto& ep = *s_.model->eq_plastic_strain();
     j["metrics"]["plastic_work"] = s_.model->plastic_work();
-    j["metrics"]["max_eq_plastic_strain"] = largest(max_over_own(ep));
+    j["metrics"]["max_eq_plastic_strain"] = largest(ep);
   }
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (s_.ownership) j["halo_particles"] = everywhere(halo);
