@@ -95,6 +95,14 @@ std::vector<double> Communicator::all_gather(const std::vector<double>& local) c
   return all;
 }
 
+void Communicator::ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const {
+  constexpr int tag = 1;
+  if (rank_ > 0) MPI_Recv(partial, n, MPI_DOUBLE, rank_ - 1, tag, comm_, MPI_STATUS_IGNORE);
+  add_own(partial);
+  if (rank_ + 1 < size_) MPI_Send(partial, n, MPI_DOUBLE, rank_ + 1, tag, comm_);
+  if (size_ > 1) MPI_Bcast(partial, n, MPI_DOUBLE, size_ - 1, comm_);
+}
+
 void Communicator::broadcast(std::vector<double>& values, int root) const {
   if (size_ > 1) MPI_Bcast(values.data(), static_cast<int>(values.size()), MPI_DOUBLE, root, comm_);
 }

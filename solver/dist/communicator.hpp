@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <exception>
+#include <functional>
 #include <vector>
 
 namespace pdmpm::dist {
@@ -37,6 +38,11 @@ class Communicator {
   std::vector<std::int64_t> gather(const std::vector<std::int64_t>& local) const;
   // Every process's `local` values, concatenated in rank order, on every process.
   std::vector<double> all_gather(const std::vector<double>& local) const;
+  // `n` sums passed along the processes in rank order: add_own adds this process's terms
+  // to `partial`, which arrives holding the processes' before it and returns the totals,
+  // the same on every process. A chain: one message per process per sum, in sequence —
+  // the price of summing in one global order (docs/models/distributed.md).
+  void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const;
   // Process `root`'s `values` (the same length everywhere) on every process.
   void broadcast(std::vector<double>& values, int root) const;
   void barrier() const;

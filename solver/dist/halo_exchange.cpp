@@ -75,13 +75,7 @@ void HaloExchange::fill(double* data, int width) const {
 }
 
 void HaloExchange::ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const {
-  // A chain: latency grows with the process count (one message per process per sum),
-  // the price of the one-process bits; docs/models/distributed.md.
-  constexpr int tag = 1;
-  if (comm_.rank() > 0) MPI_Recv(partial, n, MPI_DOUBLE, comm_.rank() - 1, tag, comm_.handle(), MPI_STATUS_IGNORE);
-  add_own(partial);
-  if (comm_.rank() + 1 < comm_.size()) MPI_Send(partial, n, MPI_DOUBLE, comm_.rank() + 1, tag, comm_.handle());
-  MPI_Bcast(partial, n, MPI_DOUBLE, comm_.size() - 1, comm_.handle());
+  comm_.ordered_sum(partial, n, add_own);
 }
 
 void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const std::vector<Index>& neighbor) {

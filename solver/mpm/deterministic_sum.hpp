@@ -9,9 +9,12 @@
 
 namespace pdmpm::mpm {
 
+// Terms per chunk (a distributed run continues the chunks across processes).
+inline constexpr Index kSumChunk = 1024;
+
 template <class T, class Fn>
 T deterministic_sum(Index n, T zero, Fn&& term) {
-  constexpr Index kChunk = 1024;
+  constexpr Index kChunk = kSumChunk;
   const Index chunks = (n + kChunk - 1) / kChunk;
   std::vector<T> partial(static_cast<std::size_t>(chunks), zero);
 #pragma omp parallel for schedule(static) if (n >= kParallelMin)

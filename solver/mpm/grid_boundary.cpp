@@ -154,7 +154,7 @@ void GridBoundary<D>::mirror(std::vector<Vec<D>>& v) const {
 
 template <int D>
 void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass, double dt,
-                                std::vector<Vec<D>>* reactions) const {
+                                std::vector<Vec<D>>* reactions, std::vector<NodeTerm>* terms) const {
   if (reactions) reactions->assign(bcs_.size(), Vec<D>::Zero());
   for (std::size_t b = 0; b < bcs_.size(); ++b) {
     const GridBc<D>& bc = bcs_[b];
@@ -185,7 +185,13 @@ void GridBoundary<D>::constrain(std::vector<Vec<D>>& v, double t, const std::vec
         case BcKind::symmetry:
           break;
       }
-      if (reactions && mass && dt > 0.0) (*reactions)[b] += real_share(i) * (*mass)[i] * (v[i] - before) / dt;
+      if (reactions && mass && dt > 0.0) {
+        const Vec<D> term = real_share(i) * (*mass)[i] * (v[i] - before) / dt;
+        if (terms)
+          terms->push_back({b, i, term});
+        else
+          (*reactions)[b] += term;
+      }
     }
   }
 }
@@ -204,7 +210,7 @@ Vec<D> GridBoundary<D>::prescribed(std::size_t b, std::size_t n, double t, const
 }
 
 template <int D>
-double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t) const {
+double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t, std::vector<NodeTerm>* terms) const {
   double power = 0.0;
   for (std::size_t b = 0; b < bcs_.size(); ++b) {
     const GridBc<D>& bc = bcs_[b];
@@ -215,8 +221,15 @@ double GridBoundary<D>::constraint_power(const std::vector<Vec<D>>& f, double t)
       const Index i = nodes_[b][n];
       const Vec<D> target = prescribed(b, n, t, uniform);
       const double w = weight_[b].empty() ? 1.0 : weight_[b][n];  // the held share of the node
+      Vec<D> term = Vec<D>::Zero();
       for (int a = 0; a < D; ++a)
-        if (bc.components[a]) power -= w * real_share(i) * f[i][a] * r * target[a];
+        if (bc.components[a]) term[a] = w * real_share(i) * f[i][a] * r * target[a];
+      if (terms) {
+        terms->push_back({b, i, term});
+        continue;
+      }
+      for (int a = 0; a < D; ++a)
+        if (bc.components[a]) power -= term[a];
     }
   }
   return power;

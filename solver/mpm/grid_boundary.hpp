@@ -33,8 +33,15 @@ class GridBoundary {
   void mirror(std::vector<Vec<D>>& v) const;
   // Impose the velocity constraints at time t. With `mass` and `dt` given, the force
   // each boundary exerted (Σ m Δv / dt over its nodes) is written to `reactions`.
+  // With `terms` too, each node's share goes there instead, in the order the sums take
+  // them (a distributed run sums the shares of every process's nodes in that order).
+  struct NodeTerm {
+    std::size_t boundary;
+    Index node;
+    Vec<D> value;
+  };
   void constrain(std::vector<Vec<D>>& v, double t, const std::vector<double>* mass = nullptr, double dt = 0.0,
-                 std::vector<Vec<D>>* reactions = nullptr) const;
+                 std::vector<Vec<D>>* reactions = nullptr, std::vector<NodeTerm>* terms = nullptr) const;
 
   // Moves the boxes of the moving velocity constraints from t to t + dt by their
   // prescribed velocity at the box centre (trapezoid rule: exact for a constant speed
@@ -50,7 +57,9 @@ class GridBoundary {
 
   // Power of the velocity constraints at time t against nodal forces f (the reaction
   // −f on each constrained component, times the prescribed velocity; real share only).
-  double constraint_power(const std::vector<Vec<D>>& f, double t) const;
+  // With `terms`, each node's contributions per component (0 where free) go there
+  // instead, and the power returned is 0: the power is −Σ of them in their order.
+  double constraint_power(const std::vector<Vec<D>>& f, double t, std::vector<NodeTerm>* terms = nullptr) const;
 
   // Share of a node's (folded) mass and force that belongs to the real body: ½ on a
   // symmetry plane (the mirror image holds the other half), ¼ where two planes meet.

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -121,12 +122,26 @@ void prefetch_ahead(const std::vector<Index>& order, Index k, const Arrays&... a
 
 template <int D>
 Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, const std::string& file,
-                          const std::string& prefix)
-    : settings_(std::move(settings)), particles_(particles), constitutive_(settings_.material, settings_.setting) {
+                          const std::string& prefix, std::shared_ptr<OtherProcesses> others)
+    : settings_(std::move(settings)),
+      particles_(particles),
+      constitutive_(settings_.material, settings_.setting),
+      others_(std::move(others)) {
   const double dx = particles_.lattice.spacing;
   validate(settings_, dx, file, prefix);
   auto key = [&](const std::string& k) { return prefix.empty() ? k : prefix + "." + k; };
-  if (particles_.n_real == 0) throw InputError(file, key("(particles)"), "the MPM body has no particles");
+  // Whole-body answers of a distributed run: a maximum over the processes, exact in any order.
+  auto largest = [&](double local) { return others_ ? others_->max(local) : local; };
+  if (largest(static_cast<double>(particles_.n_real)) == 0.0)
+    throw InputError(file, key("(particles)"), "the MPM body has no particles");
+  if (others_) {
+    // What reads beyond a point's own grid nodes: not distributed yet (docs/models/distributed.md).
+    if (settings_.nonlocal.enabled)
+      throw InputError(file, key("nonlocal"), "non-local hardening is not available in a distributed run yet");
+    for (const GridBc<D>& bc : settings_.boundaries)
+      if (bc.kind == BcKind::symmetry)
+        throw InputError(file, "symmetry", "symmetry planes are not available in a distributed MPM run yet");
+  }
   K_ = nodes_per_axis(settings_.shape);
 
   // Grid: node lines through settings.origin, cell h, covering the domain.
@@ -142,6 +157,7 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
       lo = lo.cwiseMin(particles_.position(p));
       hi = hi.cwiseMax(particles_.position(p));
     }
+    for (int a = 0; a < D; ++a) lo[a] = -largest(-lo[a]), hi[a] = largest(hi[a]);
     lo -= Vec<D>::Constant(0.5 * dx + settings_.padding_cells * h);
     hi += Vec<D>::Constant(0.5 * dx + settings_.padding_cells * h);
   }
@@ -179,7 +195,7 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
         in = in && particles_.x0[p][a] >= tr.min[a] - tol && particles_.x0[p][a] <= tr.max[a] + tol;
       if (in) sel.push_back(p);
     }
-    if (sel.empty())
+    if (largest(sel.empty() ? 0.0 : 1.0) == 0.0)
       throw InputError(file, key(fmt::format("traction[{}].min", t)), "the traction region contains no particle");
     traction_particles_.push_back(std::move(sel));
   }
@@ -187,11 +203,15 @@ Simulation<D>::Simulation(Settings<D> settings, core::Particles<D>& particles, c
   // Every real particle's stencil must fit in the grid now (whatever its kind).
   active_.clear();
   for (Index p = 0; p < particles_.n_real; ++p) active_.push_back(p);
+  std::string uncovered;
   try {
-    compute_stencils();
+    compute_stencils(active_, own_);
   } catch (const RunError& e) {
-    throw InputError(file, key("grid.min"), std::string("the grid does not cover the body: ") + e.what());
+    uncovered = e.what();
   }
+  if (largest(uncovered.empty() ? 0.0 : 1.0) > 0.0)
+    throw InputError(file, key("grid.min"),
+                     "the grid does not cover the body" + (uncovered.empty() ? std::string() : ": " + uncovered));
   refresh_active();
   if (settings_.dt > 0.0) {
     const double dts = stable_dt();
@@ -236,15 +256,15 @@ void Simulation<D>::refresh_active() {
 // Cells of the active particles → the scatter schedule → each particle's stencil,
 // stored in schedule order.
 template <int D>
-void Simulation<D>::compute_stencils() {
-  const Index na = static_cast<Index>(active_.size());
-  std::vector<IVec<D>>& cell = cell_;
-  cell.resize(active_.size());
+void Simulation<D>::compute_stencils(const std::vector<Index>& points, ScatterSet& set) {
+  const Index na = static_cast<Index>(points.size());
+  std::vector<IVec<D>>& cell = set.cell;
+  cell.resize(points.size());
   Index bad = std::numeric_limits<Index>::max();
   const IVec<D> cells = grid_.cells();
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
-    const Index p = active_[k];
+    const Index p = points[k];
     const Vec<D> xr = particles_.position(p) - grid_.node0;
     if (!xr.allFinite()) {
       bad = std::min(bad, p);
@@ -258,19 +278,22 @@ void Simulation<D>::compute_stencils() {
       cell[k][a] = static_cast<std::int32_t>(std::clamp(xr[a] / grid_.h, 0.0, static_cast<double>(cells[a] - 1)));
   }
   if (bad == std::numeric_limits<Index>::max()) {
-    schedule_.build(grid_, active_, cell);
-    stencil_.resize(schedule_.order().size());
+    set.schedule.build(grid_, points, cell);
+    set.stencil.resize(set.schedule.order().size());
     if (settings_.shape == ShapeFunction::gimp)
-      compute_gimp_stencils(bad);
+      compute_gimp_stencils(set, bad);
     else
-      compute_other_stencils(bad);
+      compute_other_stencils(set, bad);
   }
   if (bad != std::numeric_limits<Index>::max()) {
     std::string where;
     const Vec<D> x = particles_.position(bad);
     for (int a = 0; a < D; ++a) where += fmt::format("{}{}", a ? ", " : "", x[a]);
+    const Index global = !others_ ? bad
+        : bad < particles_.n_real ? others_->first_global() + bad
+                                  : ghost_global_[bad - particles_.n_real];
     throw RunError(
-        fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, bad, where));
+        fmt::format("MPM step {}: particle {} at ({}) has left the grid (or its stencil has)", steps_, global, where));
   }
 }
 
@@ -278,8 +301,8 @@ void Simulation<D>::compute_stencils() {
 // repeats its last particle in the unused lanes. Each group's positions and half-widths
 // are gathered a group ahead (for_each_group_gathered_ahead).
 template <int D>
-void Simulation<D>::compute_gimp_stencils(Index& bad) {
-  const std::vector<Index>& order = schedule_.order();
+void Simulation<D>::compute_gimp_stencils(ScatterSet& set, Index& bad) {
+  const std::vector<Index>& order = set.schedule.order();
   const Index na = static_cast<Index>(order.size());
   const Index groups = (na + kGimpLanes - 1) / kGimpLanes;
   struct Inputs {
@@ -301,22 +324,22 @@ void Simulation<D>::compute_gimp_stencils(Index& bad) {
       GimpLanes lanes;
       gimp_lanes(in.x_rel[a], in.lp[a], grid_.h, lanes);
       for (int l = 0; l < kGimpLanes && k0 + l < na; ++l) {
-        Stencil<D>& st = stencil_[k0 + l];
+        Stencil<D>& st = set.stencil[k0 + l];
         st.first[a] = lanes.first[l];
         for (int n = 0; n < 3; ++n) st.w[a][n] = lanes.w[n][l], st.dw[a][n] = lanes.dw[n][l];
       }
     }
     Index group_bad = kNoParticle;
     for (Index k = k0; k < std::min(k0 + kGimpLanes, na); ++k)
-      if (!inside_grid(stencil_[k])) group_bad = std::min(group_bad, order[k]);
+      if (!inside_grid(set.stencil[k])) group_bad = std::min(group_bad, order[k]);
     return group_bad;
   };
   bad = std::min(bad, for_each_group_gathered_ahead<Inputs>(groups, na >= kParallelMin, gather, compute));
 }
 
 template <int D>
-void Simulation<D>::compute_other_stencils(Index& bad) {
-  const std::vector<Index>& order = schedule_.order();
+void Simulation<D>::compute_other_stencils(ScatterSet& set, Index& bad) {
+  const std::vector<Index>& order = set.schedule.order();
   const Index na = static_cast<Index>(order.size());
 #pragma omp parallel for schedule(static) reduction(min : bad) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
@@ -325,7 +348,7 @@ void Simulation<D>::compute_other_stencils(Index& bad) {
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
     if (!inside_grid(st)) bad = std::min(bad, p);
-    stencil_[k] = st;
+    set.stencil[k] = st;
   }
 }
 
@@ -371,16 +394,17 @@ void Simulation<D>::scatter(Scatter what) {
   clear_grid(what);
   const IVec<D> stride = grid_.stride;
   const bool external = any_external_force_;
-  const std::vector<Index>& order = schedule_.order();
+  const ScatterSet& set = scatter_set();
+  const std::vector<Index>& order = set.schedule.order();
   if constexpr (D == 2) {
     if (rows()) {  // a stencil row per instruction (scatter_rows.hpp)
-      const ScatterSource2 source{order.data(),        stencil_.data(),        state_.mass.data(),
+      const ScatterSource2 source{order.data(),        set.stencil.data(),     state_.mass.data(),
                                   particles_.v.data(), stress_volume().data(), in_plane(state_.kirchhoff),
                                   ext_force_.data()};
       const ScatterTarget2 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride[1]};
       const ScatterFields fields{what.mass, what.momentum, what.forces, external};
-      schedule_.for_each_block(
+      set.schedule.for_each_block(
           [&](Index k_begin, Index k_end) { scatter_rows(source, target, fields, k_begin, k_end); });
       fold_grid(what);
       return;
@@ -388,18 +412,18 @@ void Simulation<D>::scatter(Scatter what) {
   }
   if constexpr (D == 3) {
     if (K_ == 3) {  // a stencil row per instruction (scatter_rows.hpp)
-      const ScatterSource3 source{order.data(),           stencil_.data(),   state_.mass.data(), particles_.v.data(),
-                                  stress_volume().data(), &state_.kirchhoff, ext_force_.data()};
+      const ScatterSource3 source{order.data(),           set.stencil.data(), state_.mass.data(), particles_.v.data(),
+                                  stress_volume().data(), &state_.kirchhoff,  ext_force_.data()};
       const ScatterTarget3 target{grid_.mass.data(), grid_.momentum.data(), grid_.force_internal.data(),
                                   grid_.force_external.data(), stride};
       const ScatterFields fields{what.mass, what.momentum, what.forces, external};
-      schedule_.for_each_block(
+      set.schedule.for_each_block(
           [&](Index k_begin, Index k_end) { scatter_rows3(source, target, fields, k_begin, k_end); });
       fold_grid(what);
       return;
     }
   }
-  schedule_.for_each([&](Index k, Index p) {
+  set.schedule.for_each([&](Index k, Index p) {
     prefetch_ahead(order, k, state_.mass, particles_.v);
     if (what.forces) prefetch_ahead(order, k, stress_volume(), ext_force_);
     const double m = state_.mass[p];
@@ -408,7 +432,7 @@ void Simulation<D>::scatter(Scatter what) {
     const Vec<D> fe = ext_force_[p];
     // A zero external force adds only ±0 to sums that start at +0: exact to skip (scatter_rows.cpp).
     const bool adds_external = external && !fe.isZero(0.0);
-    for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>& g) {
+    for_each_grid_node<D>(set.stencil[k], K_, stride, [&](Index node, double w, const Vec<D>& g) {
       if (what.mass) grid_.mass[node] += w * m;
       if (what.momentum) grid_.momentum[node] += w * mv;
       if (what.forces) {
@@ -452,9 +476,9 @@ void Simulation<D>::update_nonlocal() {
 template <int D>
 Mat<D> Simulation<D>::velocity_gradient(Index k, const std::vector<Vec<D>>& vg) const {
   if constexpr (D == 3)
-    if (K_ == 3) return velocity_gradient_rows3(stencil_[k], vg.data(), grid_.stride);  // the same bits by rows
+    if (K_ == 3) return velocity_gradient_rows3(own_.stencil[k], vg.data(), grid_.stride);  // the same bits by rows
   double L[D][D] = {};
-  for_each_grid_node<D>(stencil_[k], K_, grid_.stride, [&](Index node, double, const Vec<D>& g) {
+  for_each_grid_node<D>(own_.stencil[k], K_, grid_.stride, [&](Index node, double, const Vec<D>& g) {
     const Vec<D>& v = vg[node];
     for (int a = 0; a < D; ++a)
       for (int b = 0; b < D; ++b) L[a][b] += v[a] * g[b];
@@ -478,7 +502,7 @@ void Simulation<D>::stretch_domain(Index p) {
 // half-widths if the domains stretch).
 template <int D>
 void Simulation<D>::advance_deformation(Index k, const std::vector<Vec<D>>& vg, double dt) {
-  const Index p = schedule_.order()[k];
+  const Index p = own_.schedule.order()[k];
   state_.F.set(p, cayley_increment<D>(velocity_gradient(k, vg), dt) * state_.F.get(p));
   stretch_domain(p);
 }
@@ -507,7 +531,7 @@ void Simulation<D>::update_stress(const std::vector<Vec<D>>& vg, double dt) {
       return;
     }
   }
-  const std::vector<Index>& order = schedule_.order();
+  const std::vector<Index>& order = own_.schedule.order();
   const Index na = static_cast<Index>(order.size());
 #pragma omp parallel for schedule(static) if (na >= kParallelMin)
   for (Index k = 0; k < na; ++k) {
@@ -540,10 +564,10 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
                                            Index& bad) {
   if constexpr (D == 2) {
     static_assert(kPolarLanes == kLawLanes && kDeformationLanes == kLawLanes && kCopyLanes == kLawLanes);
-    const std::vector<Index>& order = schedule_.order();
+    const std::vector<Index>& order = own_.schedule.order();
     const Index na = static_cast<Index>(order.size());
     const bool elastic_only = settings_.material.model == MaterialModel::linear_elastic;
-    const auto& lane_groups = schedule_.lane_groups();
+    const auto& lane_groups = own_.schedule.lane_groups();
     const Index groups = static_cast<Index>(lane_groups.size());
     struct Inputs {
       DeformationLanes def;  // L and F
@@ -564,7 +588,8 @@ void Simulation<D>::update_stress_in_lanes(const std::vector<Vec<D>>& vg, double
         for (Index k = k0; k < k0 + n; ++k) prefetch_ahead(order, k, state_.failed);
       }
       DeformationLanes& def = in.def;
-      if (rows()) velocity_gradient_lanes(def, stencil_.data() + k0, static_cast<int>(n), vg.data(), grid_.stride[1]);
+      if (rows())
+        velocity_gradient_lanes(def, own_.stencil.data() + k0, static_cast<int>(n), vg.data(), grid_.stride[1]);
       for (int l = 0; l < kLawLanes && !rows(); ++l) {  // 2 × 2 stencils (linear)
         const Mat<2> L = velocity_gradient(k0 + std::min<Index>(l, n - 1), vg);
         def.l00[l] = L(0, 0), def.l01[l] = L(0, 1), def.l10[l] = L(1, 0), def.l11[l] = L(1, 1);
@@ -753,7 +778,7 @@ void Simulation<D>::apply_ductile_criterion(Index p, double alpha_before, double
 // polar_log<2> itself.
 template <int D>
 void Simulation<D>::polar_decompositions(Index& bad) {
-  const std::vector<Index>& order = schedule_.order();
+  const std::vector<Index>& order = own_.schedule.order();
   const Index na = static_cast<Index>(order.size());
   // false if particle order[k] has inverted (bad is reduced in the loops, not here).
   auto decompose = [&](Index k) {
@@ -822,6 +847,7 @@ double Simulation<D>::stable_dt() const {
     const double c = std::sqrt(modulus / m.rho) + particles_.v[p].norm();
     vmax = std::max(vmax, c);
   }
+  if (others_) vmax = others_->max(vmax);
   return vmax > 0.0 ? grid_.h / vmax : std::numeric_limits<double>::infinity();
 }
 
@@ -838,7 +864,7 @@ void Simulation<D>::step(double dt) {
   if (!(dt > 0.0) || !std::isfinite(dt)) throw RunError(fmt::format("MPM step {}: invalid time step {}", steps_, dt));
   refresh_active();
   newly_failed_.clear();
-  if (active_.empty()) {
+  if (active_.empty() && !others_) {  // (a distributed process without points still joins the others)
     boundary_.advance(time_, dt);
     time_ += dt;
     ++steps_;
@@ -860,6 +886,7 @@ void Simulation<D>::step(double dt) {
   if (usf) {
     update_stress(grid_.velocity, dt);
     phase_seconds_.stress += clock.lap();
+    if (others_) refresh_ghosts(GhostField::stress);
     scatter({.forces = true});
     phase_seconds_.p2g += clock.lap();
   }
@@ -884,6 +911,7 @@ void Simulation<D>::step(double dt) {
 
   for (Index p : active_)
     if (failed_this_step_[p]) newly_failed_.push_back(p);
+  if (others_) drop_ghosts();
   boundary_.advance(t, dt);  // moving grips carry their node boxes to tⁿ⁺¹
   time_ += dt;
   ++steps_;
@@ -895,7 +923,7 @@ template <int D>
 void Simulation<D>::prepare_step(double t) {
   sync_particles();
   failed_this_step_.assign(particles_.size(), 0);
-  compute_stencils();
+  compute_stencils(active_, own_);
   // External forces (time tⁿ); only the active particles' entries are read.
   ext_force_.resize(particles_.size());
   const Index na = static_cast<Index>(active_.size());
@@ -920,6 +948,10 @@ void Simulation<D>::prepare_step(double t) {
   }
   any_external_force_ = any;
   update_nonlocal();
+  if (others_) {
+    receive_ghosts();
+    build_shared_scatter();
+  }
 }
 
 template <int D>
@@ -947,7 +979,13 @@ void Simulation<D>::update_grid(double t, double dt) {
   }
   velocity_free_ = grid_.velocity_new;
   const auto& v_free = velocity_free_;
-  boundary_.constrain(grid_.velocity_new, t + dt, &grid_.mass, dt, &reactions_);
+  if (others_) {  // the reactions of the nodes this process books, summed with the others' in one process's order
+    std::vector<typename GridBoundary<D>::NodeTerm> terms;
+    boundary_.constrain(grid_.velocity_new, t + dt, &grid_.mass, dt, &reactions_, &terms);
+    sum_node_terms(terms, &reactions_, nullptr);
+  } else {
+    boundary_.constrain(grid_.velocity_new, t + dt, &grid_.mass, dt, &reactions_);
+  }
   boundary_.mirror(grid_.velocity_new);
 
   // Work of external and boundary forces over the step (midpoint velocity). The
@@ -958,7 +996,7 @@ void Simulation<D>::update_grid(double t, double dt) {
   // rest: 8.7× the true half of the external work after 2e-4 s in the unit test's
   // plate; with vⁿ the balance closes to 1e-3 of the work).
   {
-    const Vec<3> w = deterministic_sum<Vec<3>>(N, Vec<3>::Zero(), [&](Index i) {
+    const Vec<3> w = sum_over_nodes<3>([&](Index i) {
       const double share = boundary_.real_share(i);
       const Vec<D> vm = 0.5 * share * (grid_.velocity[i] + grid_.velocity_new[i]);
       Vec<3> r;
@@ -979,25 +1017,28 @@ void Simulation<D>::update_grid(double t, double dt) {
 // each node still sums its particles in the schedule's order.
 template <int D>
 void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
-  const std::vector<Index>& order = schedule_.order();
+  const std::vector<Index>& order = own_.schedule.order();
   const Index na = static_cast<Index>(order.size());
   const IVec<D> stride = grid_.stride;
   const double flip = settings_.flip;
   std::atomic<bool> finite{true};
+  // One process scatters the remap in the G2P pass; a distributed one needs the ghosts'
+  // new velocities first, so its remap is a scatter of its own after them.
+  const bool fused_remap = remap && !others_;
   auto move_particle = [&](Index k, Index p) {
     prefetch_ahead(order, k, particles_.v, particles_.u);
-    if (remap) prefetch_ahead(order, k, state_.mass);
+    if (fused_remap) prefetch_ahead(order, k, state_.mass);
     Vec<D> v_pic = Vec<D>::Zero(), dv = Vec<D>::Zero();
-    for_each_grid_node<D>(stencil_[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
+    for_each_grid_node<D>(own_.stencil[k], K_, stride, [&](Index node, double w, const Vec<D>&) {
       v_pic += w * grid_.velocity_new[node];
       dv += w * (grid_.velocity_new[node] - grid_.velocity[node]);
     });
     particles_.v[p] = flip * (particles_.v[p] + dv) + (1.0 - flip) * v_pic;
     particles_.u[p] += dt * v_pic;
     if (!particles_.v[p].allFinite() || !particles_.u[p].allFinite()) finite.store(false, std::memory_order_relaxed);
-    if (remap) {
+    if (fused_remap) {
       const Vec<D> mv = state_.mass[p] * particles_.v[p];
-      for_each_grid_node<D>(stencil_[k], K_, stride,
+      for_each_grid_node<D>(own_.stencil[k], K_, stride,
                             [&](Index node, double w, const Vec<D>&) { grid_.momentum[node] += w * mv; });
     }
   };
@@ -1006,39 +1047,45 @@ void Simulation<D>::grid_to_particles(double t, double dt, bool remap) {
   auto move_run = [&](Index k_begin, Index k_end) {
     if constexpr (D == 2) {
       if (rows()) {
-        const G2PArrays2 arrays{order.data(),          stencil_.data(),           state_.mass.data(),
+        const G2PArrays2 arrays{order.data(),          own_.stencil.data(),       state_.mass.data(),
                                 grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
                                 particles_.u.data(),   grid_.momentum.data(),     stride[1]};
-        if (!g2p_rows(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
+        if (!g2p_rows(arrays, {flip, dt, fused_remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
         return;
       }
     }
     if constexpr (D == 3) {
       if (K_ == 3) {
-        const G2PArrays3 arrays{order.data(),          stencil_.data(),           state_.mass.data(),
+        const G2PArrays3 arrays{order.data(),          own_.stencil.data(),       state_.mass.data(),
                                 grid_.velocity.data(), grid_.velocity_new.data(), particles_.v.data(),
                                 particles_.u.data(),   grid_.momentum.data(),     stride};
-        if (!g2p_rows3(arrays, {flip, dt, remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
+        if (!g2p_rows3(arrays, {flip, dt, fused_remap}, k_begin, k_end)) finite.store(false, std::memory_order_relaxed);
         return;
       }
     }
     for (Index k = k_begin; k < k_end; ++k) move_particle(k, order[k]);
   };
-  if (remap) {
+  if (fused_remap) {
     clear_grid({.momentum = true});
-    schedule_.for_each_block(move_run);
+    own_.schedule.for_each_block(move_run);
     fold_grid({.momentum = true});
   } else {
     constexpr Index kChunk = 256;
 #pragma omp parallel for schedule(static) if (na >= kParallelMin)
     for (Index k0 = 0; k0 < na; k0 += kChunk) move_run(k0, std::min(na, k0 + kChunk));
   }
+  if (!finite.load() && others_)  // the energies would wait for the other processes
+    throw RunError(fmt::format("MPM step {} (t = {} s): non-finite particle velocity", steps_, t));
   if (!finite.load()) {
     const Energies e = energies();
     throw RunError(
         fmt::format("MPM step {} (t = {} s): non-finite particle velocity; kinetic energy {} J, strain "
                     "energy {} J; step {} s vs stable estimate {} s",
                     steps_, t, e.kinetic, e.strain, dt, stable_dt()));
+  }
+  if (remap && others_) {
+    refresh_ghosts(GhostField::velocity);
+    scatter({.momentum = true});
   }
 }
 
@@ -1068,14 +1115,14 @@ void Simulation<D>::set_stress_weight(const std::vector<double>& weight) {
     return;
   }
   if (weight.size() < particles_.volume.size()) throw RunError("MPM: one stress weight per particle expected");
+  if (others_) throw RunError("MPM: stress weights (the hybrid's blend) are not distributed yet");
   stress_volume_.resize(particles_.volume.size());
   for (std::size_t p = 0; p < stress_volume_.size(); ++p) stress_volume_[p] = weight[p] * particles_.volume[p];
 }
 
 template <int D>
 Energies Simulation<D>::energies() const {
-  const Index na = static_cast<Index>(active_.size());
-  const Vec<3> s = deterministic_sum<Vec<3>>(na, Vec<3>::Zero(), [&](Index k) {
+  const Vec<3> s = sum_over_points<3>([&](Index k) {
     const Index p = active_[k];
     const double V = stress_volume()[p];
     return Vec<3>(0.5 * state_.mass[p] * particles_.v[p].squaredNorm(), V * state_.energy[p],
@@ -1092,25 +1139,99 @@ Energies Simulation<D>::energies() const {
 }
 
 template <int D>
-double Simulation<D>::pending_boundary_work(double dt) const {
+double Simulation<D>::pending_boundary_work(double dt) {
   std::vector<Vec<D>> f(static_cast<std::size_t>(grid_.size()), Vec<D>::Zero());
   const IVec<D> stride = grid_.stride;
-  for (Index p : active_) {
-    if (state_.failed[p]) continue;
+  if (others_) receive_ghosts();  // the others' points as they are now
+  // Distributed, every node sums its points in the global order, as one process does.
+  const std::vector<Index> points = others_ ? own_and_ghosts() : active_;
+  std::vector<std::uint8_t> marks(others_ ? f.size() : 0, 0);
+  for (Index p : points) {
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
     if (!inside_grid(st)) continue;  // the next step reports it
+    if (others_)
+      for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>&) { mark_node(p, node, marks); });
+    if (state_.failed[p]) continue;
     const Mat<D> Vtau = stress_volume()[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
     for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });
   }
   boundary_.fold(nullptr, &f);
-  return 0.5 * dt * boundary_.constraint_power(f, time_);
+  if (!others_) return 0.5 * dt * boundary_.constraint_power(f, time_);
+  own_marked_nodes(marks);
+  std::vector<typename GridBoundary<D>::NodeTerm> terms;
+  boundary_.constraint_power(f, time_, &terms);
+  double power = 0.0;
+  sum_node_terms(terms, nullptr, &power);
+  drop_ghosts();
+  return 0.5 * dt * power;
+}
+
+template <int D>
+template <int N, class Fn>
+Eigen::Matrix<double, N, 1> Simulation<D>::sum_over_points(Fn&& term) const {
+  using V = Eigen::Matrix<double, N, 1>;
+  const Index na = static_cast<Index>(active_.size());
+  if (!others_) return deterministic_sum<V>(na, V::Zero(), term);
+  // deterministic_sum continued from process to process: the closed chunks' total, the
+  // open chunk's partial sum and the count of terms so far travel along the chain.
+  std::array<double, 2 * N + 1> chain{};
+  others_->ordered_sum(chain.data(), 2 * N + 1, [&](double* c) {
+    Eigen::Map<V> total(c), partial(c + N);
+    double& count = c[2 * N];
+    for (Index k = 0; k < na; ++k, count += 1.0) {
+      if (count > 0.0 && std::fmod(count, static_cast<double>(kSumChunk)) == 0.0) {
+        total += partial;
+        partial.setZero();
+      }
+      partial += term(k);
+    }
+  });
+  const Eigen::Map<const V> total(chain.data()), partial(chain.data() + N);
+  return chain[2 * N] > 0.0 ? V(total + partial) : V(total);
+}
+
+template <int D>
+template <int N, class Fn>
+Eigen::Matrix<double, N, 1> Simulation<D>::sum_over_nodes(Fn&& term) const {
+  using V = Eigen::Matrix<double, N, 1>;
+  const Index nodes = grid_.size();
+  if (!others_) return deterministic_sum<V>(nodes, V::Zero(), term);
+  // The terms of the nodes this process books, gathered with the others' and summed in
+  // node order by deterministic_sum's chunks. A zero term is left out: the sums start at
+  // +0 and round to nearest, so they never hold −0, and adding ±0 leaves them as they are.
+  std::vector<double> mine;
+  for (Index i = 0; i < nodes; ++i) {
+    if (!owned_node_[i]) continue;
+    const V t = term(i);
+    if ((t.array() == 0.0).all()) continue;
+    mine.push_back(static_cast<double>(i));
+    mine.insert(mine.end(), t.data(), t.data() + N);
+  }
+  const std::vector<double> all = others_->all_gather(mine);
+  const std::size_t records = all.size() / (N + 1);
+  std::vector<std::size_t> order(records);
+  for (std::size_t r = 0; r < records; ++r) order[r] = r;
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return all[a * (N + 1)] < all[b * (N + 1)]; });
+  V total = V::Zero(), partial = V::Zero();
+  Index chunk = -1;
+  for (std::size_t r : order) {
+    const auto node = static_cast<Index>(all[r * (N + 1)]);
+    if (node / kSumChunk != chunk) {
+      if (chunk >= 0) total += partial;
+      partial.setZero();
+      chunk = node / kSumChunk;
+    }
+    partial += Eigen::Map<const V>(&all[r * (N + 1) + 1]);
+  }
+  if (chunk >= 0) total += partial;
+  return total;
 }
 
 template <int D>
 Vec<D> Simulation<D>::momentum() const {
-  const Index na = static_cast<Index>(active_.size());
-  return deterministic_sum<Vec<D>>(na, Vec<D>::Zero(), [&](Index k) {
+  return sum_over_points<D>([&](Index k) {
     const Index p = active_[k];
     return Vec<D>(state_.mass[p] * particles_.v[p]);
   });
@@ -1118,8 +1239,7 @@ Vec<D> Simulation<D>::momentum() const {
 
 template <int D>
 double Simulation<D>::total_mass() const {
-  const Index na = static_cast<Index>(active_.size());
-  return deterministic_sum<double>(na, 0.0, [&](Index k) { return state_.mass[active_[k]]; });
+  return sum_over_points<1>([&](Index k) { return Eigen::Matrix<double, 1, 1>(state_.mass[active_[k]]); })[0];
 }
 
 template <int D>

@@ -20,6 +20,7 @@
 // F is updated by the Cayley increment (kinematics.hpp), so a rigid rotation of
 // the grid velocity field rotates each particle exactly.
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -29,6 +30,7 @@
 #include "solver/mpm/constitutive.hpp"
 #include "solver/mpm/grid.hpp"
 #include "solver/mpm/grid_boundary.hpp"
+#include "solver/mpm/other_processes.hpp"
 #include "solver/mpm/particle_state.hpp"
 #include "solver/mpm/scatter_schedule.hpp"
 #include "solver/mpm/settings.hpp"
@@ -62,8 +64,11 @@ class Simulation {
   // Validates the settings (InputError with `file` and `prefix` in the key path),
   // builds the grid around the particles and initialises the MPM state of every
   // real particle (whatever its kind, so a later switch to MPM finds it ready).
+  // Distributed (`others`): `particles` holds this process's own points, the real ones,
+  // in global order; the grid is the whole body's, and every sum, maximum and output
+  // is the whole body's, as one process computes it (solver/mpm/other_processes.hpp).
   Simulation(Settings<D> settings, core::Particles<D>& particles, const std::string& file = "",
-             const std::string& prefix = "mpm");
+             const std::string& prefix = "mpm", std::shared_ptr<OtherProcesses> others = nullptr);
 
   // h / max_p (c_p + |v_p|): the CFL = 1 step of the grid wave speed.
   double stable_dt() const;
@@ -91,13 +96,15 @@ class Simulation {
   // the internal forces of the current stress on the constrained nodes. Costs a
   // particle pass: for the stability check when the booked work looks too small
   // (a grip at full speed from t = 0 has done no booked work after its first step).
-  double pending_boundary_work(double dt) const;
+  double pending_boundary_work(double dt);
   Vec<D> momentum() const;
   double total_mass() const;
   // Force each boundary exerted on the body during the last step (N; volumes carry
   // thickness / cross-section), in the order of settings.boundaries.
   const std::vector<Vec<D>>& reactions() const { return reactions_; }
 
+  // Distributed: other processes' points this process held as ghosts in the last step.
+  Index ghost_points() const { return ghosts_seen_; }
   // Wall time spent in each phase of step() since construction (seconds, this process).
   const StepPhaseSeconds& phase_seconds() const { return phase_seconds_; }
 
@@ -135,11 +142,41 @@ class Simulation {
   void update_grid(double t, double dt);
   void grid_to_particles(double t, double dt, bool remap);
   void initialise_particle(Index p);
-  void compute_stencils();
+  // Cells of `points` → `schedule` → their stencils in its order (see ScatterSet).
+  struct ScatterSet;
+  void compute_stencils(const std::vector<Index>& points, ScatterSet& set);
   struct Scatter {
     bool mass = false, momentum = false, forces = false;
   };
   void scatter(Scatter what);
+  // Distributed: the other processes' points that reach this process's nodes, as ghosts
+  // after the real particles (store and state), with the scatter over own points and
+  // ghosts; refresh_ghosts sends their velocity (MUSL's remap) or stress (USF) again;
+  // drop_ghosts ends the step with the real particles alone.
+  void receive_ghosts();
+  void build_shared_scatter();
+  enum class GhostField { velocity, stress };
+  void refresh_ghosts(GhostField field);
+  void drop_ghosts();
+  void set_ghost_count(Index n);
+  // Σ term(k) over the active points k, in deterministic_sum's chunks; distributed, over
+  // every process's points in their global order (the one-process sum, to the bit).
+  template <int N, class Fn>
+  Eigen::Matrix<double, N, 1> sum_over_points(Fn&& term) const;
+  // Σ term(i) over the grid nodes in deterministic_sum's chunks; distributed, each node's
+  // term from the process that owns it (shared_.owned_node), gathered in node order.
+  template <int N, class Fn>
+  Eigen::Matrix<double, N, 1> sum_over_nodes(Fn&& term) const;
+  // Distributed: own points and ghosts, merged in global order; marks of the nodes they
+  // reach → owned_node_ (see shared_).
+  std::vector<Index> own_and_ghosts() const;
+  void mark_node(Index p, Index node, std::vector<std::uint8_t>& marks) const;
+  void own_marked_nodes(const std::vector<std::uint8_t>& marks);
+  // Distributed: the boundaries' node terms of every process's owned nodes, in one
+  // process's order, summed per boundary into `out` (reactions) or, with `power`, as
+  // −Σ over their components.
+  void sum_node_terms(const std::vector<typename GridBoundary<D>::NodeTerm>& terms, std::vector<Vec<D>>* out,
+                      double* power) const;
   void clear_grid(Scatter what);  // zero what a scatter sums
   void fold_grid(Scatter what);   // fold it across symmetry planes afterwards
   void grid_velocity_from_momentum(std::vector<Vec<D>>& v) const;
@@ -160,10 +197,10 @@ class Simulation {
     return settings_.nonlocal.enabled ? state_.eq_plastic_hardening[p] - eq_plastic : 0.0;
   }
   Vec<D> external_force(Index p, double t) const;
-  // stencil_ (polar_) of the active particles in schedule order; bad = the lowest particle
+  // The stencils of `set.schedule`'s points in its order; bad = the lowest particle
   // whose stencil leaves the grid (whose F has inverted), left as it is if none.
-  void compute_gimp_stencils(Index& bad);
-  void compute_other_stencils(Index& bad);
+  void compute_gimp_stencils(ScatterSet& set, Index& bad);
+  void compute_other_stencils(ScatterSet& set, Index& bad);
   void polar_decompositions(Index& bad);
   bool inside_grid(const Stencil<D>& st) const;  // every node of the stencil is a grid node
 
@@ -173,11 +210,25 @@ class Simulation {
   Grid<D> grid_;
   GridBoundary<D> boundary_;
   ParticleState<D> state_;
-  ScatterSchedule<D> schedule_;
   std::vector<Index> active_;
-  std::vector<Stencil<D>> stencil_;  // per active particle this step, in schedule_.order()
-  std::vector<IVec<D>> cell_;        // per active particle this step: its cell (scratch of compute_stencils)
-  std::vector<PolarLog<D>> polar_;   // per active particle this step (log-strain laws), same order
+  // Points, their scatter schedule and their stencils (in schedule order) for a step.
+  struct ScatterSet {
+    ScatterSchedule<D> schedule;
+    std::vector<Stencil<D>> stencil;  // per point this step, in schedule.order()
+    std::vector<IVec<D>> cell;        // per point this step: its cell (scratch of compute_stencils)
+  };
+  ScatterSet own_;  // the active particles: G2P and the stress update go through it
+  // Distributed: own points and ghosts in global order (the scatter goes through them, so
+  // every node sums its points in one process's order), each ghost's global index, and
+  // per node whether this process books it in the grid's sums (its own points reach it and
+  // no lower process's do).
+  std::shared_ptr<OtherProcesses> others_;
+  ScatterSet shared_;
+  std::vector<Index> shared_points_, ghost_global_;
+  std::vector<std::uint8_t> owned_node_;
+  Index ghosts_seen_ = 0;
+  const ScatterSet& scatter_set() const { return others_ ? shared_ : own_; }
+  std::vector<PolarLog<D>> polar_;                 // per active particle this step (log-strain laws), same order
   bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)
   std::vector<Vec<D>> ext_force_;                  // per particle external force this step (N)
   std::vector<double> stress_volume_;              // V weighted by set_stress_weight (empty: none set)

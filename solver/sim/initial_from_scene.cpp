@@ -19,7 +19,8 @@ std::array<std::optional<bc::Expression>, D> components(const std::vector<std::s
 }  // namespace
 
 template <int D>
-std::vector<bc::InitialCondition<D>> make_initial_conditions(const io::Scene& s, const core::Particles<D>& p) {
+std::vector<bc::InitialCondition<D>> make_initial_conditions(const io::Scene& s, const core::Particles<D>& p,
+                                                             const dist::Communicator* comm) {
   std::vector<bc::InitialCondition<D>> out;
   for (const auto& spec : s.initials) {
     bc::InitialCondition<D> c;
@@ -27,7 +28,8 @@ std::vector<bc::InitialCondition<D>> make_initial_conditions(const io::Scene& s,
       for (Index i = 0; i < p.n_real; ++i) c.particles.push_back(i);
     } else {
       c.particles = select_particles<D>(p.x0, p.n_real, make_geometry<D>(spec.region), s.spacing);
-      if (c.particles.empty())
+      const auto selected = static_cast<std::int64_t>(c.particles.size());
+      if ((comm ? comm->sum(selected) : selected) == 0)
         throw InputError(s.file, spec.key + ".region",
                          "selects no particle (particles sit on lattice sites; check the region against the body)");
     }
@@ -38,8 +40,11 @@ std::vector<bc::InitialCondition<D>> make_initial_conditions(const io::Scene& s,
   return out;
 }
 
-template std::vector<bc::InitialCondition<1>> make_initial_conditions<1>(const io::Scene&, const core::Particles<1>&);
-template std::vector<bc::InitialCondition<2>> make_initial_conditions<2>(const io::Scene&, const core::Particles<2>&);
-template std::vector<bc::InitialCondition<3>> make_initial_conditions<3>(const io::Scene&, const core::Particles<3>&);
+template std::vector<bc::InitialCondition<1>> make_initial_conditions<1>(const io::Scene&, const core::Particles<1>&,
+                                                                         const dist::Communicator*);
+template std::vector<bc::InitialCondition<2>> make_initial_conditions<2>(const io::Scene&, const core::Particles<2>&,
+                                                                         const dist::Communicator*);
+template std::vector<bc::InitialCondition<3>> make_initial_conditions<3>(const io::Scene&, const core::Particles<3>&,
+                                                                         const dist::Communicator*);
 
 }  // namespace pdmpm::sim

@@ -32,6 +32,29 @@ std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::v
   return out;
 }
 
+std::vector<core::JSample> gather_j_samples(std::vector<core::JSample> samples, const dist::Communicator* comm) {
+  if (!comm || comm->size() == 1) return samples;
+  constexpr int width = 12;  // X (2), V, ∇u (4), P (4), W
+  std::vector<double> flat;
+  flat.reserve(samples.size() * width);
+  for (const auto& o : samples)
+    flat.insert(flat.end(),
+                {o.X[0], o.X[1], o.volume, o.grad_u(0, 0), o.grad_u(0, 1), o.grad_u(1, 0), o.grad_u(1, 1),
+                 o.stress(0, 0), o.stress(0, 1), o.stress(1, 0), o.stress(1, 1), o.energy});
+  const auto all = comm->all_gather(flat);
+  samples.resize(all.size() / width);
+  for (std::size_t k = 0; k < samples.size(); ++k) {
+    const double* v = &all[k * width];
+    auto& o = samples[k];
+    o.X = Vec<2>(v[0], v[1]);
+    o.volume = v[2];
+    o.grad_u << v[3], v[4], v[5], v[6];
+    o.stress << v[7], v[8], v[9], v[10];
+    o.energy = v[11];
+  }
+  return samples;
+}
+
 template std::vector<JIntegralOutput> j_integral_outputs<1>(const io::Scene&, const std::vector<Vec<1>>&, Index);
 template std::vector<JIntegralOutput> j_integral_outputs<2>(const io::Scene&, const std::vector<Vec<2>>&, Index);
 template std::vector<JIntegralOutput> j_integral_outputs<3>(const io::Scene&, const std::vector<Vec<3>>&, Index);

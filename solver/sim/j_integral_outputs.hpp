@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solver/core/j_integral.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/io/scene.hpp"
 
 namespace pdmpm::sim {
@@ -24,6 +25,11 @@ std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::v
 inline void add_j_integral_columns(const std::vector<JIntegralOutput>& js, std::vector<std::string>& columns) {
   for (const auto& j : js) columns.push_back("j_" + j.name);
 }
+
+// A distributed run's samples: every process's, in the global particle order (each
+// process's own in their order, the processes in rank order), on every process, so each
+// forms the one-process domain sum. Unchanged with one process (`comm` null).
+std::vector<core::JSample> gather_j_samples(std::vector<core::JSample> samples, const dist::Communicator* comm);
 
 // Their values, in the same order; samples(centre, radius) gives the method's samples there.
 template <class Samples>

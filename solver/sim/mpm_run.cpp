@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "solver/core/error.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/mpm/j_samples.hpp"
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/simulation.hpp"
@@ -23,8 +24,9 @@ class MpmRun {
       : scene_(scene),
         s_(setup),
         p_(setup.particles),
-        sim_(setup.settings, setup.particles, scene.file, "mpm"),
-        rec_(scene, options) {
+        sim_(setup.settings, setup.particles, scene.file, "mpm", setup.others),
+        rec_(scene, options),
+        comm_(rec_.distributed() ? options.comm : nullptr) {
     check_boundary_nodes<D>(scene_, s_.grid_bc_source, sim_);
     set_initial_deformation<D>(s_.initial, sim_);
   }
@@ -43,12 +45,16 @@ class MpmRun {
   };
   Peaks peaks() const;
   void state(core::StateArchive& a);  // what a checkpoint holds of this run
+  // Whole-body values: over every process of a distributed run (each holds its own points).
+  std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
+  double largest(double local) const { return comm_ ? comm_->max(local) : local; }
 
   const io::Scene& scene_;
   MpmSetup<D>& s_;
   core::Particles<D>& p_;
   mpm::Simulation<D> sim_;
   RunRecorder rec_;
+  const dist::Communicator* comm_;  // null unless distributed
 
   double dt_ = 0.0, dt_cfl0_ = 0.0, end_time_ = 0.0, balance0_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, failed_ = 0;
@@ -104,7 +110,7 @@ typename MpmRun<D>::Peaks MpmRun<D>::peaks() const {
     vm = std::max(vm, sim_.von_mises(i));
     u = std::max(u, p_.u[i].norm());
   }
-  return {eps, vm, u};
+  return {largest(eps), largest(vm), largest(u)};
 }
 
 template <int D>
@@ -125,10 +131,11 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
       if (s_.grid_bc_source[b] == static_cast<int>(k)) r += sim_.reactions()[b];
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   }
-  add_probe_values<D>(s_.probes, p_.u, p_.v, row);
+  add_probe_values<D>(s_.probes, p_.u, p_.v, row, comm_);
   if constexpr (D == 2)
     add_j_integral_values(
-        s_.j_integrals, [&](const Vec<2>& tip, double r) { return mpm::j_samples(sim_, tip, r); }, row);
+        s_.j_integrals,
+        [&](const Vec<2>& tip, double r) { return gather_j_samples(mpm::j_samples(sim_, tip, r), comm_); }, row);
   rec_.write_history(row);
 }
 
@@ -192,35 +199,39 @@ nlohmann::json MpmRun<D>::summary() const {
   const Peaks peak = peaks();
   const auto& st = s_.settings;
   const mpm::StepPhaseSeconds& ph = sim_.phase_seconds();
-  return {{"solver", "mpm"},
-          {"model", "mpm"},
-          {"constitutive", std::string(name(st.material.model))},
-          {"shape_function", std::string(name(st.shape))},
-          {"update_scheme", std::string(name(st.scheme))},
-          {"dimension", D},
-          {"setting", std::string(name(st.setting))},
-          {"spacing", scene_.spacing},
-          {"cell_size", sim_.cell_size()},
-          {"particles", p_.n_real},
-          {"grid_nodes", sim_.grid().size()},
-          {"dt", dt_},
-          {"dt_estimate", {{"cfl_step_at_start", dt_cfl0_}}},
-          {"end_time", dt_ * static_cast<double>(steps_done_)},
-          {"wall_time_phases",
-           {{"prepare", ph.prepare}, {"p2g", ph.p2g}, {"grid", ph.grid}, {"g2p", ph.g2p}, {"stress", ph.stress}}},
-          {"metrics",
-           {{"failed_particles", failed_},
-            {"max_eq_plastic_strain", peak.eq_plastic_strain},
-            {"max_von_mises", peak.von_mises},
-            {"max_displacement", peak.displacement},
-            {"kinetic_energy", e.kinetic},
-            {"internal_energy", e.strain},
-            {"plastic_work", e.dissipated},
-            {"external_work", e.external_work},
-            {"boundary_work", e.boundary_work},
-            {"damping_work", e.damping_work},
-            {"energy_error", e.balance() - balance0_},
-            {"total_mass", sim_.total_mass()}}}};
+  nlohmann::json j = {
+      {"solver", "mpm"},
+      {"model", "mpm"},
+      {"constitutive", std::string(name(st.material.model))},
+      {"shape_function", std::string(name(st.shape))},
+      {"update_scheme", std::string(name(st.scheme))},
+      {"dimension", D},
+      {"setting", std::string(name(st.setting))},
+      {"spacing", scene_.spacing},
+      {"cell_size", sim_.cell_size()},
+      {"particles", s_.global_count},
+      {"grid_nodes", sim_.grid().size()},
+      {"dt", dt_},
+      {"dt_estimate", {{"cfl_step_at_start", dt_cfl0_}}},
+      {"end_time", dt_ * static_cast<double>(steps_done_)},
+      {"wall_time_phases",
+       {{"prepare", ph.prepare}, {"p2g", ph.p2g}, {"grid", ph.grid}, {"g2p", ph.g2p}, {"stress", ph.stress}}},
+      {"metrics",
+       {{"failed_particles", failed_},
+        {"max_eq_plastic_strain", peak.eq_plastic_strain},
+        {"max_von_mises", peak.von_mises},
+        {"max_displacement", peak.displacement},
+        {"kinetic_energy", e.kinetic},
+        {"internal_energy", e.strain},
+        {"plastic_work", e.dissipated},
+        {"external_work", e.external_work},
+        {"boundary_work", e.boundary_work},
+        {"damping_work", e.damping_work},
+        {"energy_error", e.balance() - balance0_},
+        {"total_mass", sim_.total_mass()}}}};
+  // The other processes' points every process held in the last step (what the ghosts cost).
+  if (comm_) j["ghost_points"] = everywhere(sim_.ghost_points());
+  return j;
 }
 
 template <int D>
@@ -234,7 +245,7 @@ RunResult MpmRun<D>::run() {
     if (step > 0) {
       if (!rec_.step_or_stop([&] { sim_.step(dt_); })) break;
       steps_done_ = step;
-      failed_ += static_cast<std::int64_t>(sim_.newly_failed().size());
+      failed_ += everywhere(static_cast<std::int64_t>(sim_.newly_failed().size()));
     }
     const double t = dt_ * static_cast<double>(step);
     const bool last = step == total_steps_;
@@ -248,7 +259,7 @@ RunResult MpmRun<D>::run() {
     if (step > 0) rec_.progress(step, t, failed_);
     if (step > 0 && rec_.after_step(step, t)) break;
   }
-  return rec_.finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_, p_.n_real, summary());
+  return rec_.finish(steps_done_, dt_ * static_cast<double>(steps_done_), failed_, s_.global_count, summary());
 }
 
 }  // namespace

@@ -10,6 +10,8 @@
 #include "solver/bc/expression.hpp"
 #include "solver/core/error.hpp"
 #include "solver/core/particle_builder.hpp"
+#include "solver/dist/decomposition.hpp"
+#include "solver/dist/particle_share.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/geometry_from_scene.hpp"
 #include "solver/sim/initial_from_scene.hpp"
@@ -163,19 +165,34 @@ MpmGridSettings<D> translate_mpm(const io::Scene& s) {
 }
 
 template <int D>
-MpmSetup<D> build_mpm(const io::Scene& s) {
+MpmSetup<D> build_mpm(const io::Scene& s, const dist::Communicator* comm) {
   MpmSetup<D> out;
   out.particles = fill_body<D>(s);
   for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
+  out.global_count = out.particles.n_real;
+  // Probes and J-integral rings are placed in the whole body (before it is distributed).
+  out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
+  out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real);
+  if (comm && comm->size() > 1) {
+    // Material points never change owner: each process keeps a contiguous range of the
+    // global (Morton) order; its ghosts are found afresh every step (mpm/other_processes.hpp).
+    const Index n = out.particles.n_real;
+    const dist::OwnedRange own = dist::owned_range(n, comm->rank(), comm->size());
+    out.particles = dist::local_store<D>(out.particles, own, {});
+    out.others = std::make_shared<dist::ParticleShare>(*comm, own);
+    for (auto& probe : out.probes) {
+      const Index g = probe.particle;
+      probe.owner = dist::owner_rank(g, n, comm->size());
+      probe.particle = own.contains(g) ? g - own.begin : -1;
+    }
+  }
   // Before the simulation exists: its grid covers the displaced body and its first
   // stable step sees the initial velocities.
-  out.initial = make_initial_conditions<D>(s, out.particles);
+  out.initial = make_initial_conditions<D>(s, out.particles, out.others ? comm : nullptr);
   bc::apply_initial_conditions<D>(out.initial, out.particles);
   auto grid = translate_mpm<D>(s);
   out.settings = std::move(grid.settings);
   out.grid_bc_source = std::move(grid.grid_bc_source);
-  out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
-  out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real);
   return out;
 }
 
@@ -207,8 +224,8 @@ template void check_boundary_nodes<3>(const io::Scene&, const std::vector<int>&,
 template void set_initial_deformation<1>(const std::vector<bc::InitialCondition<1>>&, mpm::Simulation<1>&);
 template void set_initial_deformation<2>(const std::vector<bc::InitialCondition<2>>&, mpm::Simulation<2>&);
 template void set_initial_deformation<3>(const std::vector<bc::InitialCondition<3>>&, mpm::Simulation<3>&);
-template MpmSetup<1> build_mpm<1>(const io::Scene&);
-template MpmSetup<2> build_mpm<2>(const io::Scene&);
-template MpmSetup<3> build_mpm<3>(const io::Scene&);
+template MpmSetup<1> build_mpm<1>(const io::Scene&, const dist::Communicator*);
+template MpmSetup<2> build_mpm<2>(const io::Scene&, const dist::Communicator*);
+template MpmSetup<3> build_mpm<3>(const io::Scene&, const dist::Communicator*);
 
 }  // namespace pdmpm::sim

@@ -3,10 +3,12 @@
 // the particles (kind mpm, on the scene's lattice) and the mpm::Settings the
 // scene's [material], [mpm], [time], boundaries, symmetry planes and body force
 // translate into. The translation, key by key, is in the README ("MPM scenes").
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "solver/bc/initial_condition.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/mpm/settings.hpp"
@@ -57,11 +59,16 @@ struct MpmSetup {
   // [[initial]], already applied to u and v; set_initial_deformation gives the
   // simulation the matching deformation gradients.
   std::vector<bc::InitialCondition<D>> initial;
+  // A distributed run (docs/models/distributed.md): `particles` holds this process's own
+  // points; `others` are the other processes as the step sees them.
+  std::shared_ptr<mpm::OtherProcesses> others;
+  Index global_count = 0;  // the whole body's points
 };
 
 // Throws InputError for what only the particles reveal (empty body, a symmetry
 // plane that cuts the body, traction regions without particles).
+// With `comm` of more than one process, each process keeps its share of the points.
 template <int D>
-MpmSetup<D> build_mpm(const io::Scene& scene);
+MpmSetup<D> build_mpm(const io::Scene& scene, const dist::Communicator* comm = nullptr);
 
 }  // namespace pdmpm::sim

@@ -65,7 +65,6 @@ class PdRun {
   }
   std::int64_t broken_bonds() const { return everywhere(simulation_.broken_sides()) / 2; }
   Index particles() const { return s_.ownership ? s_.ownership->global_count : p_.n_real; }
-  void probe_values(std::vector<double>& row) const;
   std::vector<core::JSample> j_samples(const Vec<2>& tip, double radius) const;
 
   const io::Scene& scene_;
@@ -190,19 +189,6 @@ bool PdRun<D>::stable(std::int64_t step, double t, const time::VelocityVerlet<D>
   return false;
 }
 
-// A probe's u and v, sent to every process by the one that owns it.
-template <int D>
-void PdRun<D>::probe_values(std::vector<double>& row) const {
-  if (!comm_) return add_probe_values<D>(s_.probes, p_.u, p_.v, row);
-  for (const auto& probe : s_.probes) {
-    std::vector<double> values(2 * D, 0.0);
-    if (probe.particle >= 0)
-      for (int a = 0; a < D; ++a) values[a] = p_.u[probe.particle][a], values[D + a] = p_.v[probe.particle][a];
-    comm_->broadcast(values, probe.owner);
-    row.insert(row.end(), values.begin(), values.end());
-  }
-}
-
 // The J-integral's samples in a disc: every process's, in the global particle order (each
 // process's own particles in their order, the processes in rank order), on every process,
 // so the domain sum is the one-process sum.
@@ -212,28 +198,7 @@ std::vector<core::JSample> PdRun<D>::j_samples(const Vec<2>& tip, double radius)
     (void)tip, (void)radius;
     return {};
   } else {
-    auto samples = pd::elastic_j_samples(s_.system, tip, radius);
-    if (!comm_) return samples;
-    constexpr int width = 12;  // X (2), V, ∇u (4), P (4), W
-    std::vector<double> flat;
-    flat.reserve(samples.size() * width);
-    for (const auto& o : samples) {
-      flat.insert(flat.end(),
-                  {o.X[0], o.X[1], o.volume, o.grad_u(0, 0), o.grad_u(0, 1), o.grad_u(1, 0), o.grad_u(1, 1),
-                   o.stress(0, 0), o.stress(0, 1), o.stress(1, 0), o.stress(1, 1), o.energy});
-    }
-    const auto all = comm_->all_gather(flat);
-    samples.resize(all.size() / width);
-    for (std::size_t k = 0; k < samples.size(); ++k) {
-      const double* v = &all[k * width];
-      auto& o = samples[k];
-      o.X = Vec<2>(v[0], v[1]);
-      o.volume = v[2];
-      o.grad_u << v[3], v[4], v[5], v[6];
-      o.stress << v[7], v[8], v[9], v[10];
-      o.energy = v[11];
-    }
-    return samples;
+    return gather_j_samples(pd::elastic_j_samples(s_.system, tip, radius), comm_);
   }
 }
 
@@ -266,7 +231,7 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     });
     row.insert(row.end(), r.begin(), r.end());
   }
-  probe_values(row);
+  add_probe_values<D>(s_.probes, p_.u, p_.v, row, comm_);
   if constexpr (D == 2)
     add_j_integral_values(
         s_.j_integrals, [&](const Vec<2>& tip, double r) { return j_samples(tip, r); }, row);

@@ -153,7 +153,7 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   }
   out.boundaries.finalise(sys.particles.n_real);
   // Before the run's first force evaluation, so a displacement is strained from t = 0.
-  out.initial = make_initial_conditions<D>(s, sys.particles);
+  out.initial = make_initial_conditions<D>(s, sys.particles, distributed ? comm : nullptr);
   bc::apply_initial_conditions<D>(out.initial, sys.particles);
 
   if (!s.body_force.empty()) {

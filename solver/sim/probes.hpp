@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "solver/core/types.hpp"
+#include "solver/dist/communicator.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/sim/run_metrics.hpp"
 
@@ -28,13 +29,17 @@ void add_probe_columns(const std::vector<Probe>& probes, std::vector<std::string
       for (int a = 0; a < D; ++a) columns.push_back("probe_" + pr.name + "_" + q + axis_name(a));
 }
 
-// Their values, in the same order.
+// Their values, in the same order. Distributed (`comm`), the process that owns a probe's
+// particle sends its u and v to every process.
 template <int D>
 void add_probe_values(const std::vector<Probe>& probes, const std::vector<Vec<D>>& u, const std::vector<Vec<D>>& v,
-                      std::vector<double>& row) {
+                      std::vector<double>& row, const dist::Communicator* comm = nullptr) {
   for (const auto& pr : probes) {
-    for (int a = 0; a < D; ++a) row.push_back(u[pr.particle][a]);
-    for (int a = 0; a < D; ++a) row.push_back(v[pr.particle][a]);
+    std::vector<double> values(2 * D, 0.0);
+    if (pr.particle >= 0)
+      for (int a = 0; a < D; ++a) values[a] = u[pr.particle][a], values[D + a] = v[pr.particle][a];
+    if (comm) comm->broadcast(values, pr.owner);
+    row.insert(row.end(), values.begin(), values.end());
   }
 }
 

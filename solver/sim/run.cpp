@@ -26,8 +26,7 @@ template <int D>
 RunResult run_dim(const io::Scene& scene, const RunOptions& options) {
   switch (scene.method) {
     case io::Method::mpm: {
-      refuse_distributed(scene, options, "model.type", "MPM");
-      auto setup = build_mpm<D>(scene);
+      auto setup = build_mpm<D>(scene, options.comm);
       return run_mpm<D>(scene, setup, options);
     }
     case io::Method::pd: {

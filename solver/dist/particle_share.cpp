@@ -1,0 +1,60 @@
+#include "solver/dist/particle_share.hpp"
+
+#include <limits>
+#include <numeric>
+#include <stdexcept>
+
+namespace pdmpm::dist {
+
+void ParticleShare::plan(const std::vector<std::uint8_t>& reach,
+                         const std::function<bool(Index, const std::uint8_t*)>& reaches) {
+  const int ranks = comm_.size(), me = comm_.rank();
+  const int blocks = static_cast<int>(reach.size());
+  std::vector<std::uint8_t> all(static_cast<std::size_t>(blocks) * ranks);
+  MPI_Allgather(reach.data(), blocks, MPI_UINT8_T, all.data(), blocks, MPI_UINT8_T, comm_.handle());
+  send_.assign(ranks, {});
+  std::vector<int> count(ranks, 0);
+  for (int q = 0; q < ranks; ++q) {
+    if (q == me) continue;
+    const std::uint8_t* theirs = &all[static_cast<std::size_t>(q) * blocks];
+    for (Index k = 0; k < own_.size(); ++k)
+      if (reaches(k, theirs)) send_[q].push_back(k);
+    count[q] = static_cast<int>(send_[q].size());
+  }
+  receive_count_.assign(ranks, 0);
+  MPI_Alltoall(count.data(), 1, MPI_INT, receive_count_.data(), 1, MPI_INT, comm_.handle());
+}
+
+std::vector<double> ParticleShare::send(int width, const std::function<void(Index, double*)>& record) const {
+  const int ranks = comm_.size();
+  std::vector<int> send_count(ranks), send_offset(ranks), receive_count(ranks), receive_offset(ranks);
+  std::int64_t sent = 0, received = 0;
+  for (int q = 0; q < ranks; ++q) {
+    send_count[q] = static_cast<int>(send_[q].size()) * width;
+    receive_count[q] = receive_count_[q] * width;
+    send_offset[q] = static_cast<int>(sent);
+    receive_offset[q] = static_cast<int>(received);
+    sent += send_count[q];
+    received += receive_count[q];
+  }
+  if (sent > std::numeric_limits<int>::max() || received > std::numeric_limits<int>::max())
+    throw std::length_error("MPM ghost exchange: more values than MPI counts in an int");
+  std::vector<double> out(static_cast<std::size_t>(sent)), in(static_cast<std::size_t>(received));
+  for (int q = 0; q < ranks; ++q)
+    for (std::size_t s = 0; s < send_[q].size(); ++s) record(send_[q][s], &out[send_offset[q] + s * width]);
+  MPI_Alltoallv(out.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, in.data(), receive_count.data(),
+                receive_offset.data(), MPI_DOUBLE, comm_.handle());
+  return in;
+}
+
+std::int64_t ParticleShare::points_sent() const {
+  std::int64_t n = 0;
+  for (const auto& s : send_) n += static_cast<std::int64_t>(s.size());
+  return n;
+}
+
+std::int64_t ParticleShare::points_received() const {
+  return std::accumulate(receive_count_.begin(), receive_count_.end(), std::int64_t{0});
+}
+
+}  // namespace pdmpm::dist

@@ -1,0 +1,260 @@
+// The parts of the MPM step a distributed run adds (solver/mpm/other_processes.hpp,
+// docs/models/distributed.md): ghosts of the other processes' points for the scatter, and
+// the grid's sums taken over every process's nodes in one process's order.
+#include <algorithm>
+
+#include "solver/mpm/simulation.hpp"
+
+namespace pdmpm::mpm {
+
+namespace {
+
+// Node blocks of the reach: a point in cell c writes to nodes c − 1 … c + 2 per axis
+// (scatter_schedule.hpp), so flagging those nodes' blocks covers every stencil.
+constexpr Index kReachBlock = 4;  // nodes per axis
+
+template <int D>
+IVec<D> reach_blocks(const IVec<D>& nodes) {
+  IVec<D> b;
+  for (int a = 0; a < D; ++a) b[a] = (nodes[a] + kReachBlock - 1) / kReachBlock;
+  return b;
+}
+
+// The blocks [lo, hi] per axis the nodes c − 1 … c + 2 of cell c fall in.
+template <int D>
+void blocks_of_cell(const IVec<D>& cell, const IVec<D>& nodes, IVec<D>& lo, IVec<D>& hi) {
+  for (int a = 0; a < D; ++a) {
+    lo[a] = std::max<Index>(cell[a] - 1, 0) / kReachBlock;
+    hi[a] = std::min<Index>(cell[a] + 2, nodes[a] - 1) / kReachBlock;
+  }
+}
+
+// fn(block index) for every block of [lo, hi].
+template <int D, class Fn>
+void for_each_block(const IVec<D>& lo, const IVec<D>& hi, const IVec<D>& blocks, Fn&& fn) {
+  IVec<D> b = lo;
+  while (true) {
+    Index index = 0;
+    for (int a = D - 1; a >= 0; --a) index = index * blocks[a] + b[a];
+    fn(index);
+    int a = 0;
+    for (; a < D && ++b[a] > hi[a]; ++a) b[a] = lo[a];
+    if (a == D) return;
+  }
+}
+
+// Ghost records: global index, position, GIMP half-widths, mass, velocity, volume, τ
+// (the D × D block the scatter reads), external force, failed.
+template <int D>
+constexpr int kRecordWidth = 4 + 4 * D + D* D;
+
+}  // namespace
+
+template <int D>
+void Simulation<D>::set_ghost_count(Index n) {
+  auto& p = particles_;
+  const auto size = static_cast<std::size_t>(p.n_real + n);
+  p.site.resize(size, IVec<D>::Zero());
+  p.x0.resize(size);
+  p.u.resize(size, Vec<D>::Zero());
+  p.v.resize(size);
+  p.f.resize(size, Vec<D>::Zero());
+  p.b.resize(size, Vec<D>::Zero());
+  p.volume.resize(size);
+  p.kind.resize(size, core::ParticleKind::mpm);
+  p.ghost_owner.assign(static_cast<std::size_t>(n), core::Particles<D>::kRemoteOwner);
+  p.ghost_sign.assign(static_cast<std::size_t>(n), Vec<D>::Ones());
+  state_.resize(p.n_real + n);
+  ext_force_.resize(size, Vec<D>::Zero());
+  ghost_global_.resize(static_cast<std::size_t>(n));
+}
+
+template <int D>
+void Simulation<D>::receive_ghosts() {
+  const Index n_real = particles_.n_real;
+  const IVec<D> nodes = grid_.n, blocks = reach_blocks<D>(nodes);
+  Index block_count = 1;
+  for (int a = 0; a < D; ++a) block_count *= blocks[a];
+  // The blocks each own point reaches, and their union.
+  std::vector<IVec<D>> lo(static_cast<std::size_t>(n_real)), hi(static_cast<std::size_t>(n_real));
+  std::vector<std::uint8_t> reach(static_cast<std::size_t>(block_count), 0),
+      active(static_cast<std::size_t>(n_real), 0);
+  for (Index p : active_) {
+    const Vec<D> xr = particles_.position(p) - grid_.node0;
+    IVec<D> cell;
+    for (int a = 0; a < D; ++a)  // as compute_stencils clamps it (a point off the grid fails there)
+      cell[a] = static_cast<std::int32_t>(std::clamp(xr[a] / grid_.h, 0.0, static_cast<double>(nodes[a] - 2)));
+    blocks_of_cell<D>(cell, nodes, lo[p], hi[p]);
+    for_each_block<D>(lo[p], hi[p], blocks, [&](Index b) { reach[b] = 1; });
+    active[p] = 1;
+  }
+  others_->plan(reach, [&](Index p, const std::uint8_t* theirs) {
+    bool reaches = false;
+    if (active[p]) for_each_block<D>(lo[p], hi[p], blocks, [&](Index b) { reaches = reaches || theirs[b]; });
+    return reaches;
+  });
+  const std::vector<double> in = others_->send(kRecordWidth<D>, [&](Index p, double* r) {
+    *r++ = static_cast<double>(others_->first_global() + p);
+    const Vec<D> x = particles_.position(p);
+    const Mat<3> tau = state_.kirchhoff.get(p);
+    for (int a = 0; a < D; ++a) *r++ = x[a];
+    for (int a = 0; a < D; ++a) *r++ = state_.half_width[p][a];
+    *r++ = state_.mass[p];
+    for (int a = 0; a < D; ++a) *r++ = particles_.v[p][a];
+    *r++ = particles_.volume[p];
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) *r++ = tau(i, j);
+    for (int a = 0; a < D; ++a) *r++ = ext_force_[p][a];
+    *r++ = state_.failed[p];
+  });
+  const Index n = static_cast<Index>(in.size()) / kRecordWidth<D>;
+  set_ghost_count(n);
+  ghosts_seen_ = n;
+  bool external = false;
+  for (Index g = 0; g < n; ++g) {
+    const double* r = &in[static_cast<std::size_t>(g) * kRecordWidth<D>];
+    const Index p = n_real + g;
+    ghost_global_[g] = static_cast<Index>(*r++);
+    for (int a = 0; a < D; ++a) particles_.x0[p][a] = *r++;  // u = 0: x0 + u is the position, exactly
+    for (int a = 0; a < D; ++a) state_.half_width[p][a] = *r++;
+    state_.mass[p] = *r++;
+    for (int a = 0; a < D; ++a) particles_.v[p][a] = *r++;
+    particles_.volume[p] = *r++;
+    Mat<3> tau = Mat<3>::Zero();
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) tau(i, j) = *r++;
+    state_.kirchhoff.set(p, tau);
+    for (int a = 0; a < D; ++a) ext_force_[p][a] = *r++;
+    state_.failed[p] = static_cast<std::uint8_t>(*r++);
+    external = external || !ext_force_[p].isZero(0.0);
+  }
+  any_external_force_ = any_external_force_ || external;
+}
+
+template <int D>
+std::vector<Index> Simulation<D>::own_and_ghosts() const {
+  std::vector<Index> points;
+  points.reserve(active_.size() + ghost_global_.size());
+  const Index first = others_->first_global(), n_real = particles_.n_real;
+  std::size_t k = 0;
+  // Ghosts of lower processes come before the own points, the others' after them.
+  for (Index g = 0; g < static_cast<Index>(ghost_global_.size()); ++g) {
+    if (ghost_global_[g] > first && k == 0) {
+      points.insert(points.end(), active_.begin(), active_.end());
+      k = active_.size() + 1;
+    }
+    points.push_back(n_real + g);
+  }
+  if (k == 0) points.insert(points.end(), active_.begin(), active_.end());
+  return points;
+}
+
+template <int D>
+void Simulation<D>::mark_node(Index p, Index node, std::vector<std::uint8_t>& marks) const {
+  const Index n_real = particles_.n_real;
+  if (p < n_real)
+    marks[node] |= 1;  // an own point reaches it
+  else if (ghost_global_[p - n_real] < others_->first_global())
+    marks[node] |= 2;  // so does a lower process's
+}
+
+template <int D>
+void Simulation<D>::own_marked_nodes(const std::vector<std::uint8_t>& marks) {
+  owned_node_.resize(marks.size());
+  for (std::size_t i = 0; i < marks.size(); ++i) owned_node_[i] = marks[i] == 1;
+}
+
+template <int D>
+void Simulation<D>::build_shared_scatter() {
+  shared_points_ = own_and_ghosts();
+  compute_stencils(shared_points_, shared_);
+  std::vector<std::uint8_t> marks(static_cast<std::size_t>(grid_.size()), 0);
+  const std::vector<Index>& order = shared_.schedule.order();
+  for (std::size_t k = 0; k < order.size(); ++k)
+    for_each_grid_node<D>(shared_.stencil[k], K_, grid_.stride,
+                          [&](Index node, double, const Vec<D>&) { mark_node(order[k], node, marks); });
+  own_marked_nodes(marks);
+}
+
+template <int D>
+void Simulation<D>::refresh_ghosts(GhostField field) {
+  const int width = field == GhostField::velocity ? D : D * D;
+  const std::vector<double> in = others_->send(width, [&](Index p, double* r) {
+    if (field == GhostField::velocity) {
+      for (int a = 0; a < D; ++a) *r++ = particles_.v[p][a];
+      return;
+    }
+    const Mat<3> tau = state_.kirchhoff.get(p);
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) *r++ = tau(i, j);
+  });
+  const Index n_real = particles_.n_real;
+  for (Index g = 0; g < static_cast<Index>(ghost_global_.size()); ++g) {
+    const double* r = &in[static_cast<std::size_t>(g) * width];
+    const Index p = n_real + g;
+    if (field == GhostField::velocity) {
+      for (int a = 0; a < D; ++a) particles_.v[p][a] = r[a];
+      continue;
+    }
+    Mat<3> tau = Mat<3>::Zero();
+    for (int i = 0; i < D; ++i)
+      for (int j = 0; j < D; ++j) tau(i, j) = r[i * D + j];
+    state_.kirchhoff.set(p, tau);
+  }
+}
+
+template <int D>
+void Simulation<D>::drop_ghosts() {
+  set_ghost_count(0);
+}
+
+template <int D>
+void Simulation<D>::sum_node_terms(const std::vector<typename GridBoundary<D>::NodeTerm>& terms,
+                                   std::vector<Vec<D>>* out, double* power) const {
+  // Records: boundary, node, the D components; the nodes this process books only.
+  constexpr int width = 2 + D;
+  std::vector<double> mine;
+  for (const auto& t : terms) {
+    if (!owned_node_[t.node]) continue;
+    mine.push_back(static_cast<double>(t.boundary));
+    mine.push_back(static_cast<double>(t.node));
+    mine.insert(mine.end(), t.value.data(), t.value.data() + D);
+  }
+  const std::vector<double> all = others_->all_gather(mine);
+  const std::size_t records = all.size() / width;
+  std::vector<std::size_t> order(records);
+  for (std::size_t r = 0; r < records; ++r) order[r] = r;
+  // One process's order: boundary by boundary, each over its nodes in index order.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double* x = &all[a * width];
+    const double* y = &all[b * width];
+    return x[0] != y[0] ? x[0] < y[0] : x[1] < y[1];
+  });
+  if (out) out->assign(boundary_.count(), Vec<D>::Zero());
+  if (power) *power = 0.0;
+  for (std::size_t r : order) {
+    const double* x = &all[r * width];
+    const Eigen::Map<const Vec<D>> value(x + 2);
+    if (out) (*out)[static_cast<std::size_t>(x[0])] += value;
+    if (power)  // a free component's term is 0, which leaves the sum as it is
+      for (int a = 0; a < D; ++a) *power -= value[a];
+  }
+}
+
+#define PDMPM_DISTRIBUTED_MEMBERS(D)                                                                  \
+  template void Simulation<D>::set_ghost_count(Index);                                                \
+  template void Simulation<D>::receive_ghosts();                                                      \
+  template std::vector<Index> Simulation<D>::own_and_ghosts() const;                                  \
+  template void Simulation<D>::mark_node(Index, Index, std::vector<std::uint8_t>&) const;             \
+  template void Simulation<D>::own_marked_nodes(const std::vector<std::uint8_t>&);                    \
+  template void Simulation<D>::build_shared_scatter();                                                \
+  template void Simulation<D>::refresh_ghosts(GhostField);                                            \
+  template void Simulation<D>::drop_ghosts();                                                         \
+  template void Simulation<D>::sum_node_terms(const std::vector<typename GridBoundary<D>::NodeTerm>&, \
+                                              std::vector<Vec<D>>*, double*) const;
+PDMPM_DISTRIBUTED_MEMBERS(1)
+PDMPM_DISTRIBUTED_MEMBERS(2)
+PDMPM_DISTRIBUTED_MEMBERS(3)
+#undef PDMPM_DISTRIBUTED_MEMBERS
+
+}  // namespace pdmpm::mpm
