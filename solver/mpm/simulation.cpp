@@ -256,7 +256,7 @@ void Simulation<D>::refresh_active() {
 // Cells of the active particles → the scatter schedule → each particle's stencil,
 // stored in schedule order.
 template <int D>
-void Simulation<D>::compute_stencils(const std::vector<Index>& points, ScatterSet& set) {
+void Simulation<D>::compute_stencils(const std::vector<Index>& points, ScatterSet& set, bool with_stencils) {
   const Index na = static_cast<Index>(points.size());
   std::vector<IVec<D>>& cell = set.cell;
   cell.resize(points.size());
@@ -279,6 +279,7 @@ void Simulation<D>::compute_stencils(const std::vector<Index>& points, ScatterSe
   }
   if (bad == std::numeric_limits<Index>::max()) {
     set.schedule.build(grid_, points, cell);
+    if (!with_stencils) return;
     set.stencil.resize(set.schedule.order().size());
     if (settings_.shape == ShapeFunction::gimp)
       compute_gimp_stencils(set, bad);
@@ -923,7 +924,7 @@ template <int D>
 void Simulation<D>::prepare_step(double t) {
   sync_particles();
   failed_this_step_.assign(particles_.size(), 0);
-  compute_stencils(active_, own_);
+  compute_stencils(active_, own_, !others_);  // distributed: the own points' stencils come with the ghosts'
   // External forces (time tⁿ); only the active particles' entries are read.
   ext_force_.resize(particles_.size());
   const Index na = static_cast<Index>(active_.size());
@@ -1178,14 +1179,15 @@ Eigen::Matrix<double, N, 1> Simulation<D>::sum_over_points(Fn&& term) const {
   std::array<double, 2 * N + 1> chain{};
   others_->ordered_sum(chain.data(), 2 * N + 1, [&](double* c) {
     Eigen::Map<V> total(c), partial(c + N);
-    double& count = c[2 * N];
-    for (Index k = 0; k < na; ++k, count += 1.0) {
-      if (count > 0.0 && std::fmod(count, static_cast<double>(kSumChunk)) == 0.0) {
+    auto count = static_cast<std::int64_t>(c[2 * N]);
+    for (Index k = 0; k < na; ++k, ++count) {
+      if (count > 0 && count % kSumChunk == 0) {
         total += partial;
         partial.setZero();
       }
       partial += term(k);
     }
+    c[2 * N] = static_cast<double>(count);
   });
   const Eigen::Map<const V> total(chain.data()), partial(chain.data() + N);
   return chain[2 * N] > 0.0 ? V(total + partial) : V(total);
@@ -1197,8 +1199,8 @@ Eigen::Matrix<double, N, 1> Simulation<D>::sum_over_nodes(Fn&& term) const {
   using V = Eigen::Matrix<double, N, 1>;
   const Index nodes = grid_.size();
   if (!others_) return deterministic_sum<V>(nodes, V::Zero(), term);
-  // The terms of the nodes this process books, gathered with the others' and summed in
-  // node order by deterministic_sum's chunks. A zero term is left out: the sums start at
+  // The terms of the nodes this process books, gathered with the others', summed as one
+  // process sums them. A zero term is not sent (the node's term stays +0): the sums start at
   // +0 and round to nearest, so they never hold −0, and adding ±0 leaves them as they are.
   std::vector<double> mine;
   for (Index i = 0; i < nodes; ++i) {
@@ -1209,24 +1211,10 @@ Eigen::Matrix<double, N, 1> Simulation<D>::sum_over_nodes(Fn&& term) const {
     mine.insert(mine.end(), t.data(), t.data() + N);
   }
   const std::vector<double> all = others_->all_gather(mine);
-  const std::size_t records = all.size() / (N + 1);
-  std::vector<std::size_t> order(records);
-  for (std::size_t r = 0; r < records; ++r) order[r] = r;
-  std::sort(order.begin(), order.end(),
-            [&](std::size_t a, std::size_t b) { return all[a * (N + 1)] < all[b * (N + 1)]; });
-  V total = V::Zero(), partial = V::Zero();
-  Index chunk = -1;
-  for (std::size_t r : order) {
-    const auto node = static_cast<Index>(all[r * (N + 1)]);
-    if (node / kSumChunk != chunk) {
-      if (chunk >= 0) total += partial;
-      partial.setZero();
-      chunk = node / kSumChunk;
-    }
-    partial += Eigen::Map<const V>(&all[r * (N + 1) + 1]);
-  }
-  if (chunk >= 0) total += partial;
-  return total;
+  std::vector<V> terms(static_cast<std::size_t>(nodes), V::Zero());
+  for (std::size_t r = 0; r < all.size(); r += N + 1)
+    terms[static_cast<std::size_t>(all[r])] = Eigen::Map<const V>(&all[r + 1]);
+  return deterministic_sum<V>(nodes, V::Zero(), [&](Index i) { return terms[i]; });
 }
 
 template <int D>

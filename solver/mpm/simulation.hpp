@@ -142,9 +142,10 @@ class Simulation {
   void update_grid(double t, double dt);
   void grid_to_particles(double t, double dt, bool remap);
   void initialise_particle(Index p);
-  // Cells of `points` → `schedule` → their stencils in its order (see ScatterSet).
+  // Cells of `points` → `schedule` → their stencils in its order (see ScatterSet); without
+  // `with_stencils` the cells and schedule only.
   struct ScatterSet;
-  void compute_stencils(const std::vector<Index>& points, ScatterSet& set);
+  void compute_stencils(const std::vector<Index>& points, ScatterSet& set, bool with_stencils = true);
   struct Scatter {
     bool mass = false, momentum = false, forces = false;
   };
@@ -226,7 +227,7 @@ class Simulation {
   ScatterSet shared_;
   std::vector<Index> shared_points_, ghost_global_;
   std::vector<std::uint8_t> owned_node_;
-  Index ghosts_seen_ = 0;
+  Index ghosts_seen_ = 0, first_global_ = 0;  // the global index of the first own point
   const ScatterSet& scatter_set() const { return others_ ? shared_ : own_; }
   std::vector<PolarLog<D>> polar_;                 // per active particle this step (log-strain laws), same order
   bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)

@@ -108,6 +108,7 @@ void Simulation<D>::receive_ghosts() {
     *r++ = state_.failed[p];
   });
   const Index n = static_cast<Index>(in.size()) / kRecordWidth<D>;
+  first_global_ = others_->first_global();
   set_ghost_count(n);
   ghosts_seen_ = n;
   bool external = false;
@@ -154,7 +155,7 @@ void Simulation<D>::mark_node(Index p, Index node, std::vector<std::uint8_t>& ma
   const Index n_real = particles_.n_real;
   if (p < n_real)
     marks[node] |= 1;  // an own point reaches it
-  else if (ghost_global_[p - n_real] < others_->first_global())
+  else if (ghost_global_[p - n_real] < first_global_)
     marks[node] |= 2;  // so does a lower process's
 }
 
@@ -170,9 +171,15 @@ void Simulation<D>::build_shared_scatter() {
   compute_stencils(shared_points_, shared_);
   std::vector<std::uint8_t> marks(static_cast<std::size_t>(grid_.size()), 0);
   const std::vector<Index>& order = shared_.schedule.order();
-  for (std::size_t k = 0; k < order.size(); ++k)
+  // The own points' stencils, in their schedule's order: the same blocks, each in global
+  // order, so the shared order with the ghosts left out.
+  own_.stencil.resize(own_.schedule.order().size());
+  std::size_t own = 0;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    if (order[k] < particles_.n_real) own_.stencil[own++] = shared_.stencil[k];
     for_each_grid_node<D>(shared_.stencil[k], K_, grid_.stride,
                           [&](Index node, double, const Vec<D>&) { mark_node(order[k], node, marks); });
+  }
   own_marked_nodes(marks);
 }
 
