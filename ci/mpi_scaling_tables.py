@@ -12,27 +12,31 @@ out.mkdir(parents=True, exist_ok=True)
 
 
 def key(r):
-    return (r["scaling"], r["processes"], r["threads_per_process"], r["particles"])
+    return (r.get("method", "lps"), r["scaling"], r["processes"], r["threads_per_process"], r["particles"])
 
 
 groups = {}
 for r in runs:
     groups.setdefault(key(r), []).append(r)
 rows = []
-for (scaling, procs, threads, particles), rs in sorted(groups.items()):
+for (method, scaling, procs, threads, particles), rs in sorted(groups.items()):
     rates = [r["particle_steps_per_second"] for r in rs]
-    rows.append([scaling, procs, threads, particles, rs[0]["halo_particles"], round(rs[0]["largest_halo_over_own"], 3),
-                 ", ".join(f"{x / 1e6:.2f}" for x in rates), round(statistics.median(rates) / 1e6, 3)])
+    rows.append([method, scaling, procs, threads, particles, rs[0]["halo_particles"],
+                 round(rs[0]["largest_halo_over_own"], 3), ", ".join(f"{x / 1e6:.2f}" for x in rates),
+                 round(statistics.median(rates) / 1e6, 3)])
 (out / "scaling.json").write_text(json.dumps({
-    "kind": "table", "title": "Distributed LPS throughput on this machine (ci/mpi_scaling.sh)",
-    "columns": ["scaling", "processes", "threads each", "particles", "halo particles", "largest halo / own",
-                "M particle-steps/s per repetition", "median"],
+    "kind": "table", "title": "Distributed LPS and MPM throughput on this machine (ci/mpi_scaling.sh)",
+    "columns": ["method", "scaling", "processes", "threads each", "particles", "halo particles (MPM: ghost points)",
+                "largest halo / own", "M particle-steps/s per repetition", "median"],
     "rows": rows,
-    "caption": "LPS block (3D, δ = 3.015Δx), 50 velocity-Verlet steps between barriers, repetitions interleaved; "
-               "strong: 40³ for every run, weak: 40³ per process. Load at the end: " + sys.argv[3].strip()}, indent=1))
+    "caption": "LPS block (3D, δ = 3.015Δx), 50 velocity-Verlet steps; MPM plate (2D plane stress, uGIMP, MUSL, J2, "
+               "ends pulled at ±5 m/s), 50 steps after 5; timed between barriers, repetitions interleaved; "
+               "strong: 40³ (LPS) or 200² (MPM) for every run, weak: as much per process. Load at the end: "
+               + sys.argv[3].strip()}, indent=1))
 
 # Projection: t_c = n/R, t_h = 3·26·α + 56 B·h/β, t_s = 2·P·α (docs/models/distributed.md).
-one = [r["particle_steps_per_second"] for r in runs if r["processes"] == 1 and r["threads_per_process"] == 1]
+one = [r["particle_steps_per_second"] for r in runs
+       if r.get("method", "lps") == "lps" and r["processes"] == 1 and r["threads_per_process"] == 1]
 R = statistics.median(one)
 alpha, beta = 2e-6, 10e9
 proj = []

@@ -6,21 +6,19 @@
 
 namespace pdmpm::dist {
 
-void ParticleShare::plan(const std::vector<std::uint8_t>& reach,
-                         const std::function<bool(Index, const std::uint8_t*)>& reaches) {
-  const int ranks = comm_.size(), me = comm_.rank();
+std::vector<std::uint8_t> ParticleShare::all_reach(const std::vector<std::uint8_t>& reach) const {
   const int blocks = static_cast<int>(reach.size());
-  std::vector<std::uint8_t> all(static_cast<std::size_t>(blocks) * ranks);
+  std::vector<std::uint8_t> all(static_cast<std::size_t>(blocks) * comm_.size());
   MPI_Allgather(reach.data(), blocks, MPI_UINT8_T, all.data(), blocks, MPI_UINT8_T, comm_.handle());
-  send_.assign(ranks, {});
+  return all;
+}
+
+void ParticleShare::plan(std::vector<std::vector<Index>> send) {
+  const int ranks = comm_.size();
+  send_ = std::move(send);
+  send_.resize(ranks);
   std::vector<int> count(ranks, 0);
-  for (int q = 0; q < ranks; ++q) {
-    if (q == me) continue;
-    const std::uint8_t* theirs = &all[static_cast<std::size_t>(q) * blocks];
-    for (Index k = 0; k < own_.size(); ++k)
-      if (reaches(k, theirs)) send_[q].push_back(k);
-    count[q] = static_cast<int>(send_[q].size());
-  }
+  for (int q = 0; q < ranks; ++q) count[q] = static_cast<int>(send_[q].size());
   receive_count_.assign(ranks, 0);
   MPI_Alltoall(count.data(), 1, MPI_INT, receive_count_.data(), 1, MPI_INT, comm_.handle());
 }

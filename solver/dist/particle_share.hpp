@@ -16,8 +16,9 @@ class ParticleShare final : public mpm::OtherProcesses {
   ParticleShare(const Communicator& comm, OwnedRange own) : comm_(comm), own_(own) {}
 
   Index first_global() const override { return own_.begin; }
-  void plan(const std::vector<std::uint8_t>& reach,
-            const std::function<bool(Index, const std::uint8_t*)>& reaches) override;
+  int rank() const override { return comm_.rank(); }
+  std::vector<std::uint8_t> all_reach(const std::vector<std::uint8_t>& reach) const override;
+  void plan(std::vector<std::vector<Index>> send) override;
   std::vector<double> send(int width, const std::function<void(Index, double*)>& record) const override;
   void ordered_sum(double* partial, int n, const std::function<void(double*)>& add_own) const override {
     comm_.ordered_sum(partial, n, add_own);

@@ -19,11 +19,14 @@ class OtherProcesses {
   virtual ~OtherProcesses() = default;
   // The global index of this process's first own point (own points are contiguous).
   virtual Index first_global() const = 0;
-  // Agrees which own points every other process needs: `reach` flags the node blocks
-  // this process's points reach (one byte per block, the same blocks on every process);
-  // reaches(k, flags) says whether own point k reaches a block another process flags.
-  virtual void plan(const std::vector<std::uint8_t>& reach,
-                    const std::function<bool(Index, const std::uint8_t*)>& reaches) = 0;
+  // This process's place in rank order (the global order of the points).
+  virtual int rank() const = 0;
+  // Every process's `reach` (one flag per node block, the same blocks on every process:
+  // the blocks its points reach), concatenated in rank order.
+  virtual std::vector<std::uint8_t> all_reach(const std::vector<std::uint8_t>& reach) const = 0;
+  // The own points (store indices, ascending) each process needs this step, one list per
+  // process in rank order (this process's empty); remembered for send().
+  virtual void plan(std::vector<std::vector<Index>> send) = 0;
   // The planned points' records (`width` doubles each, written by record(k, out)) to the
   // processes that need them; returns the records this process receives, in the global
   // order of their points.

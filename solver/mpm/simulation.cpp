@@ -1151,8 +1151,10 @@ double Simulation<D>::pending_boundary_work(double dt) {
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
     if (!inside_grid(st)) continue;  // the next step reports it
-    if (others_)
-      for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>&) { mark_node(p, node, marks); });
+    if (others_) {
+      const std::uint8_t bit = reach_mark(p);
+      for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>&) { marks[node] |= bit; });
+    }
     if (state_.failed[p]) continue;
     const Mat<D> Vtau = stress_volume()[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
     for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });

@@ -171,7 +171,7 @@ class Simulation {
   // Distributed: own points and ghosts, merged in global order; marks of the nodes they
   // reach → owned_node_ (see shared_).
   std::vector<Index> own_and_ghosts() const;
-  void mark_node(Index p, Index node, std::vector<std::uint8_t>& marks) const;
+  std::uint8_t reach_mark(Index p) const;  // 1: own point, 2: a lower process's, 0: a higher one's
   void own_marked_nodes(const std::vector<std::uint8_t>& marks);
   // Distributed: the boundaries' node terms of every process's owned nodes, in one
   // process's order, summed per boundary into `out` (reactions) or, with `power`, as

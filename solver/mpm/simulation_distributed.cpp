@@ -29,18 +29,30 @@ void blocks_of_cell(const IVec<D>& cell, const IVec<D>& nodes, IVec<D>& lo, IVec
   }
 }
 
-// fn(block index) for every block of [lo, hi].
+// fn(index, coordinates) for every cell of the box [lo, hi] of a grid of `dims` (blocks, nodes;
+// first axis fastest, as the node index).
 template <int D, class Fn>
-void for_each_block(const IVec<D>& lo, const IVec<D>& hi, const IVec<D>& blocks, Fn&& fn) {
+void for_each_in_box(const IVec<D>& lo, const IVec<D>& hi, const IVec<D>& dims, Fn&& fn) {
   IVec<D> b = lo;
   while (true) {
     Index index = 0;
-    for (int a = D - 1; a >= 0; --a) index = index * blocks[a] + b[a];
-    fn(index);
+    for (int a = D - 1; a >= 0; --a) index = index * dims[a] + b[a];
+    fn(index, b);
     int a = 0;
     for (; a < D && ++b[a] > hi[a]; ++a) b[a] = lo[a];
     if (a == D) return;
   }
+}
+
+// fn(node) for the K^D nodes of a stencil whose first node is `first`.
+template <int D, class Fn>
+void for_each_stencil_node(const IVec<D>& first, int K, const IVec<D>& stride, Fn&& fn) {
+  Index base = 0;
+  for (int a = 0; a < D; ++a) base += first[a] * stride[a];
+  const Index s1 = D > 1 ? stride[std::min(1, D - 1)] : 0, s2 = D > 2 ? stride[std::min(2, D - 1)] : 0;
+  for (int k = 0; k < (D > 2 ? K : 1); ++k)
+    for (int j = 0; j < (D > 1 ? K : 1); ++j)
+      for (int i = 0; i < K; ++i) fn(base + k * s2 + j * s1 + i);
 }
 
 // Ghost records: global index, position, GIMP half-widths, mass, velocity, volume, τ
@@ -75,24 +87,38 @@ void Simulation<D>::receive_ghosts() {
   const IVec<D> nodes = grid_.n, blocks = reach_blocks<D>(nodes);
   Index block_count = 1;
   for (int a = 0; a < D; ++a) block_count *= blocks[a];
-  // The blocks each own point reaches, and their union.
-  std::vector<IVec<D>> lo(static_cast<std::size_t>(n_real)), hi(static_cast<std::size_t>(n_real));
-  std::vector<std::uint8_t> reach(static_cast<std::size_t>(block_count), 0),
-      active(static_cast<std::size_t>(n_real), 0);
-  for (Index p : active_) {
-    const Vec<D> xr = particles_.position(p) - grid_.node0;
+  // The blocks each own point reaches (in the order of active_), and their union.
+  const std::size_t na = active_.size();
+  std::vector<IVec<D>> lo(na), hi(na);
+  std::vector<std::uint8_t> reach(static_cast<std::size_t>(block_count), 0);
+  for (std::size_t k = 0; k < na; ++k) {
+    const Vec<D> xr = particles_.position(active_[k]) - grid_.node0;
     IVec<D> cell;
     for (int a = 0; a < D; ++a)  // as compute_stencils clamps it (a point off the grid fails there)
       cell[a] = static_cast<std::int32_t>(std::clamp(xr[a] / grid_.h, 0.0, static_cast<double>(nodes[a] - 2)));
-    blocks_of_cell<D>(cell, nodes, lo[p], hi[p]);
-    for_each_block<D>(lo[p], hi[p], blocks, [&](Index b) { reach[b] = 1; });
-    active[p] = 1;
+    blocks_of_cell<D>(cell, nodes, lo[k], hi[k]);
+    for_each_in_box<D>(lo[k], hi[k], blocks, [&](Index b, const IVec<D>&) { reach[b] = 1; });
   }
-  others_->plan(reach, [&](Index p, const std::uint8_t* theirs) {
-    bool reaches = false;
-    if (active[p]) for_each_block<D>(lo[p], hi[p], blocks, [&](Index b) { reaches = reaches || theirs[b]; });
-    return reaches;
-  });
+  // Each other process needs the own points that reach a block it flags; the box around
+  // its flags rules out most points at once.
+  const std::vector<std::uint8_t> all = others_->all_reach(reach);
+  const int processes = static_cast<int>(all.size() / reach.size()), me = others_->rank();
+  std::vector<std::vector<Index>> send(static_cast<std::size_t>(processes));
+  for (int q = 0; q < processes; ++q) {
+    if (q == me) continue;
+    const std::uint8_t* theirs = &all[static_cast<std::size_t>(q) * reach.size()];
+    IVec<D> box_lo = blocks, box_hi = IVec<D>::Constant(-1);
+    for_each_in_box<D>(IVec<D>::Zero(), blocks - IVec<D>::Ones(), blocks, [&](Index b, const IVec<D>& at) {
+      if (theirs[b]) box_lo = box_lo.cwiseMin(at), box_hi = box_hi.cwiseMax(at);
+    });
+    for (std::size_t k = 0; k < na; ++k) {
+      if ((hi[k].array() < box_lo.array()).any() || (lo[k].array() > box_hi.array()).any()) continue;
+      bool reaches = false;
+      for_each_in_box<D>(lo[k], hi[k], blocks, [&](Index b, const IVec<D>&) { reaches = reaches || theirs[b]; });
+      if (reaches) send[q].push_back(active_[k]);
+    }
+  }
+  others_->plan(std::move(send));
   const std::vector<double> in = others_->send(kRecordWidth<D>, [&](Index p, double* r) {
     *r++ = static_cast<double>(others_->first_global() + p);
     const Vec<D> x = particles_.position(p);
@@ -151,12 +177,10 @@ std::vector<Index> Simulation<D>::own_and_ghosts() const {
 }
 
 template <int D>
-void Simulation<D>::mark_node(Index p, Index node, std::vector<std::uint8_t>& marks) const {
+std::uint8_t Simulation<D>::reach_mark(Index p) const {
   const Index n_real = particles_.n_real;
-  if (p < n_real)
-    marks[node] |= 1;  // an own point reaches it
-  else if (ghost_global_[p - n_real] < first_global_)
-    marks[node] |= 2;  // so does a lower process's
+  if (p < n_real) return 1;                                  // an own point reaches the node
+  return ghost_global_[p - n_real] < first_global_ ? 2 : 0;  // a lower process's point does
 }
 
 template <int D>
@@ -177,8 +201,9 @@ void Simulation<D>::build_shared_scatter() {
   std::size_t own = 0;
   for (std::size_t k = 0; k < order.size(); ++k) {
     if (order[k] < particles_.n_real) own_.stencil[own++] = shared_.stencil[k];
-    for_each_grid_node<D>(shared_.stencil[k], K_, grid_.stride,
-                          [&](Index node, double, const Vec<D>&) { mark_node(order[k], node, marks); });
+    const std::uint8_t bit = reach_mark(order[k]);
+    if (bit)
+      for_each_stencil_node<D>(shared_.stencil[k].first, K_, grid_.stride, [&](Index node) { marks[node] |= bit; });
   }
   own_marked_nodes(marks);
 }
@@ -252,7 +277,7 @@ void Simulation<D>::sum_node_terms(const std::vector<typename GridBoundary<D>::N
   template void Simulation<D>::set_ghost_count(Index);                                                \
   template void Simulation<D>::receive_ghosts();                                                      \
   template std::vector<Index> Simulation<D>::own_and_ghosts() const;                                  \
-  template void Simulation<D>::mark_node(Index, Index, std::vector<std::uint8_t>&) const;             \
+  template std::uint8_t Simulation<D>::reach_mark(Index) const;                                       \
   template void Simulation<D>::own_marked_nodes(const std::vector<std::uint8_t>&);                    \
   template void Simulation<D>::build_shared_scatter();                                                \
   template void Simulation<D>::refresh_ghosts(GhostField);                                            \
