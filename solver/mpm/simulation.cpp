@@ -1146,22 +1146,16 @@ double Simulation<D>::pending_boundary_work(double dt) {
   if (others_) receive_ghosts();  // the others' points as they are now
   // Distributed, every node sums its points in the global order, as one process does.
   const std::vector<Index> points = others_ ? own_and_ghosts() : active_;
-  std::vector<std::uint8_t> marks(others_ ? f.size() : 0, 0);
   for (Index p : points) {
     const Stencil<D> st =
         make_stencil<D>(settings_.shape, particles_.position(p) - grid_.node0, grid_.h, state_.half_width[p]);
     if (!inside_grid(st)) continue;  // the next step reports it
-    if (others_) {
-      const std::uint8_t bit = reach_mark(p);
-      for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>&) { marks[node] |= bit; });
-    }
     if (state_.failed[p]) continue;
     const Mat<D> Vtau = stress_volume()[p] * state_.kirchhoff.get(p).template topLeftCorner<D, D>();
     for_each_grid_node<D>(st, K_, stride, [&](Index node, double, const Vec<D>& g) { f[node] -= Vtau * g; });
   }
   boundary_.fold(nullptr, &f);
   if (!others_) return 0.5 * dt * boundary_.constraint_power(f, time_);
-  own_marked_nodes(marks);
   std::vector<typename GridBoundary<D>::NodeTerm> terms;
   boundary_.constraint_power(f, time_, &terms);
   double power = 0.0;

@@ -168,11 +168,9 @@ class Simulation {
   // term from the process that owns it (shared_.owned_node), gathered in node order.
   template <int N, class Fn>
   Eigen::Matrix<double, N, 1> sum_over_nodes(Fn&& term) const;
-  // Distributed: own points and ghosts, merged in global order; marks of the nodes they
-  // reach → owned_node_ (see shared_).
+  // Distributed: own points and ghosts, merged in global order.
   std::vector<Index> own_and_ghosts() const;
-  std::uint8_t reach_mark(Index p) const;  // 1: own point, 2: a lower process's, 0: a higher one's
-  void own_marked_nodes(const std::vector<std::uint8_t>& marks);
+
   // Distributed: the boundaries' node terms of every process's owned nodes, in one
   // process's order, summed per boundary into `out` (reactions) or, with `power`, as
   // −Σ over their components.
@@ -221,13 +219,12 @@ class Simulation {
   ScatterSet own_;  // the active particles: G2P and the stress update go through it
   // Distributed: own points and ghosts in global order (the scatter goes through them, so
   // every node sums its points in one process's order), each ghost's global index, and
-  // per node whether this process books it in the grid's sums (its own points reach it and
-  // no lower process's do).
+  // per node whether this process books it in the grid's sums (receive_ghosts).
   std::shared_ptr<OtherProcesses> others_;
   ScatterSet shared_;
   std::vector<Index> shared_points_, ghost_global_;
   std::vector<std::uint8_t> owned_node_;
-  Index ghosts_seen_ = 0, first_global_ = 0;  // the global index of the first own point
+  Index ghosts_seen_ = 0;
   const ScatterSet& scatter_set() const { return others_ ? shared_ : own_; }
   std::vector<PolarLog<D>> polar_;                 // per active particle this step (log-strain laws), same order
   bool rows() const { return D == 2 && K_ == 3; }  // the 2D stencil-row passes (scatter_rows, g2p_rows)

@@ -119,6 +119,18 @@ void Simulation<D>::receive_ghosts() {
     }
   }
   others_->plan(std::move(send));
+  // A process books, in the grid's sums, the nodes of the blocks it flags and no lower process
+  // flags. It holds every point that reaches such a node: a point reaching a node reaches its
+  // block, so every process flagging the block received it.
+  owned_node_.assign(static_cast<std::size_t>(grid_.size()), 0);
+  for_each_in_box<D>(IVec<D>::Zero(), blocks - IVec<D>::Ones(), blocks, [&](Index b, const IVec<D>& at) {
+    int lowest = 0;
+    while (lowest < processes && !all[static_cast<std::size_t>(lowest) * reach.size() + b]) ++lowest;
+    if (lowest != me) return;
+    const IVec<D> first = at * kReachBlock,
+                  last = (first + IVec<D>::Constant(kReachBlock - 1)).cwiseMin(nodes - IVec<D>::Ones());
+    for_each_in_box<D>(first, last, nodes, [&](Index node, const IVec<D>&) { owned_node_[node] = 1; });
+  });
   const std::vector<double> in = others_->send(kRecordWidth<D>, [&](Index p, double* r) {
     *r++ = static_cast<double>(others_->first_global() + p);
     const Vec<D> x = particles_.position(p);
@@ -134,7 +146,6 @@ void Simulation<D>::receive_ghosts() {
     *r++ = state_.failed[p];
   });
   const Index n = static_cast<Index>(in.size()) / kRecordWidth<D>;
-  first_global_ = others_->first_global();
   set_ghost_count(n);
   ghosts_seen_ = n;
   bool external = false;
@@ -177,35 +188,16 @@ std::vector<Index> Simulation<D>::own_and_ghosts() const {
 }
 
 template <int D>
-std::uint8_t Simulation<D>::reach_mark(Index p) const {
-  const Index n_real = particles_.n_real;
-  if (p < n_real) return 1;                                  // an own point reaches the node
-  return ghost_global_[p - n_real] < first_global_ ? 2 : 0;  // a lower process's point does
-}
-
-template <int D>
-void Simulation<D>::own_marked_nodes(const std::vector<std::uint8_t>& marks) {
-  owned_node_.resize(marks.size());
-  for (std::size_t i = 0; i < marks.size(); ++i) owned_node_[i] = marks[i] == 1;
-}
-
-template <int D>
 void Simulation<D>::build_shared_scatter() {
   shared_points_ = own_and_ghosts();
   compute_stencils(shared_points_, shared_);
-  std::vector<std::uint8_t> marks(static_cast<std::size_t>(grid_.size()), 0);
   const std::vector<Index>& order = shared_.schedule.order();
   // The own points' stencils, in their schedule's order: the same blocks, each in global
   // order, so the shared order with the ghosts left out.
   own_.stencil.resize(own_.schedule.order().size());
   std::size_t own = 0;
-  for (std::size_t k = 0; k < order.size(); ++k) {
+  for (std::size_t k = 0; k < order.size(); ++k)
     if (order[k] < particles_.n_real) own_.stencil[own++] = shared_.stencil[k];
-    const std::uint8_t bit = reach_mark(order[k]);
-    if (bit)
-      for_each_stencil_node<D>(shared_.stencil[k].first, K_, grid_.stride, [&](Index node) { marks[node] |= bit; });
-  }
-  own_marked_nodes(marks);
 }
 
 template <int D>
@@ -277,8 +269,6 @@ void Simulation<D>::sum_node_terms(const std::vector<typename GridBoundary<D>::N
   template void Simulation<D>::set_ghost_count(Index);                                                \
   template void Simulation<D>::receive_ghosts();                                                      \
   template std::vector<Index> Simulation<D>::own_and_ghosts() const;                                  \
-  template std::uint8_t Simulation<D>::reach_mark(Index) const;                                       \
-  template void Simulation<D>::own_marked_nodes(const std::vector<std::uint8_t>&);                    \
   template void Simulation<D>::build_shared_scatter();                                                \
   template void Simulation<D>::refresh_ghosts(GhostField);                                            \
   template void Simulation<D>::drop_ghosts();                                                         \
