@@ -39,6 +39,15 @@ class OtherProcesses {
   // on j's process (and this process's `sides[i→j]` goes to it). Needs the families
   // (dist::HaloExchange::index_bond_sides).
   virtual void fill_reverse_sides(const double* sides, double* reverse) const = 0;
+  // The number of processes, this process's rank, and remote ghost g's (store index
+  // n_real + g) global index and owner.
+  virtual int processes() const = 0;
+  virtual int rank() const = 0;
+  virtual Index ghost_global(Index g) const = 0;
+  virtual int ghost_owner_rank(Index g) const = 0;
+  // Values of any length to other processes (`to[q]` to process q, one entry per process):
+  // returns what each process sent this one, by rank.
+  virtual std::vector<std::vector<double>> send_to(const std::vector<std::vector<double>>& to) const = 0;
 };
 
 enum class ParticleKind : std::uint8_t { pd = 0, mpm = 1, transition = 2, removed = 3 };

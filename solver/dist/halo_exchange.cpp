@@ -133,6 +133,27 @@ void HaloExchange::fill_reverse_sides(const double* sides, double* reverse) cons
   }
 }
 
+std::vector<std::vector<double>> HaloExchange::send_to(const std::vector<std::vector<double>>& to) const {
+  const int ranks = comm_.size();
+  std::vector<int> send_count(ranks), send_offset(ranks), receive_count(ranks), receive_offset(ranks);
+  std::vector<double> out;
+  for (int q = 0; q < ranks; ++q) {
+    send_offset[q] = static_cast<int>(out.size());
+    send_count[q] = static_cast<int>(to[q].size());
+    out.insert(out.end(), to[q].begin(), to[q].end());
+  }
+  MPI_Alltoall(send_count.data(), 1, MPI_INT, receive_count.data(), 1, MPI_INT, comm_.handle());
+  int total = 0;
+  for (int q = 0; q < ranks; ++q) receive_offset[q] = total, total += receive_count[q];
+  std::vector<double> in(static_cast<std::size_t>(total));
+  MPI_Alltoallv(out.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, in.data(), receive_count.data(),
+                receive_offset.data(), MPI_DOUBLE, comm_.handle());
+  std::vector<std::vector<double>> from(ranks);
+  for (int q = 0; q < ranks; ++q)
+    from[q].assign(in.begin() + receive_offset[q], in.begin() + receive_offset[q] + receive_count[q]);
+  return from;
+}
+
 double HaloExchange::max(double local) const { return comm_.max(local); }
 
 std::int64_t HaloExchange::values_sent() const {

@@ -25,6 +25,11 @@ class HaloExchange final : public core::OtherProcesses {
   double max(double local) const override;
   Index first_global() const override { return first_global_; }
   void fill_reverse_sides(const double* sides, double* reverse) const override;
+  int processes() const override { return comm_.size(); }
+  int rank() const override { return comm_.rank(); }
+  Index ghost_global(Index g) const override { return halo_[g]; }
+  int ghost_owner_rank(Index g) const override { return owner_rank(halo_[g], n_body_, comm_.size()); }
+  std::vector<std::vector<double>> send_to(const std::vector<std::vector<double>>& to) const override;
 
   // The bond sides that cross to another process, from the store's families (`offsets`
   // per own particle, `neighbor` per bond side): with each neighbouring process, the

@@ -127,6 +127,33 @@ class Hpd final : public Model<D> {
   Mat<D> j2_stress(BondIndex b, const Mat<D>& H, double& psi);  // P; writes bond_cauchy_[b]
   double fit_and_residual(const System<D>& sys, Index i, BondIndex b, Mat<D>& H);
   void clear_residual(BondIndex b);
+  // Slot q's (by point, point i) terms of the Gershgorin row: the bond's and the residual's.
+  std::pair<double, double> slot_stiffness(const System<D>& sys, Index i, BondIndex q) const;
+
+  // A distributed run (docs/models/distributed.md). A bond i→j ending in the halo has a
+  // sub-horizon that reads j's bonds (halo_bonds: every halo particle's flags, from its owner),
+  // and a halo point k is in sub-horizons of this process's bonds, whose forces on k (−P c, then
+  // the residual force) and Gershgorin terms go to k's owner as records, slot by slot. An own
+  // point's spans say where its records from each other process are: by rank, so that with its
+  // own slots between the lower and the higher processes' they come in one process's order (by
+  // the bond's owner, a global index).
+  struct RemoteSpan {
+    int process;
+    BondIndex first, count;  // records [first, first + count) of that process's message
+  };
+  std::shared_ptr<const core::OtherProcesses> remote_;
+  std::vector<BondIndex> span_begin_;  // per own point: its spans [span_begin_[i], span_begin_[i + 1])
+  std::vector<RemoteSpan> spans_;
+  std::vector<std::vector<double>> remote_forces_, remote_rows_;  // the records received, per process
+  HaloBonds halo_bonds(const System<D>& sys) const;
+  void index_remote_slots(const System<D>& sys);
+  // Records of `width` values for the halo points' slots (fn(point, slot, out)), to their owners.
+  template <class Fn>
+  std::vector<std::vector<double>> send_halo_slots(const System<D>& sys, int width, Fn&& fn) const;
+  // fn(record) for own point i's records from processes below (lower) or above this one.
+  template <class Fn>
+  void for_each_remote_record(Index i, bool lower, const std::vector<std::vector<double>>& records, int width,
+                              Fn&& fn) const;
 };
 
 }  // namespace pdmpm::pd

@@ -45,7 +45,7 @@ const std::vector<ModelInfo>& model_table() {
   static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false, true, true),
                                                row<Lps>("lps", true, false, false, true, true),
                                                row<LpsPlastic>("lps_plastic", true, false, true, false, true),
-                                               row<Hpd>("hpd", true, false, false, false, false)};
+                                               row<Hpd>("hpd", true, false, false, false, true)};
   return table;
 }
 

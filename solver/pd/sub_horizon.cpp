@@ -53,22 +53,32 @@ std::vector<int> difference_table(const core::Stencil<D>& st) {
   return diff;
 }
 
-// Whether particle j has a bond with stencil index r that satisfies `linked` (families are in
-// stencil order).
+// Whether a bond with these trial flags counts: live (the current sub-horizon), or in the
+// reference family (the largest it can be, the slots of the layout).
+bool live_flags(std::uint8_t flags) { return flags == 0; }
+bool reference_flags(std::uint8_t flags) { return !(flags & (kBondInactive | kBondCut)); }
+
+// Whether particle j has a bond with stencil index r whose flags satisfy `linked`: from its
+// family (in stencil order), or for a halo particle from the halo's table.
 template <int D, class Linked>
-bool bonded_at(const System<D>& sys, Index j, int r, Linked linked) {
+bool bonded_at(const System<D>& sys, const HaloBonds& halo, Index j, int r, Linked linked) {
+  const Index n = sys.particles.n_real;
+  if (j >= n) {
+    const std::uint8_t flags = halo.flags[static_cast<std::size_t>(j - n) * halo.stencil + r];
+    return flags != HaloBonds::kNoBond && linked(flags);
+  }
   const auto& f = sys.families;
   const auto first = f.shape.begin() + f.begin(j), last = f.shape.begin() + f.end(j);
   const auto it = std::lower_bound(first, last, static_cast<std::uint16_t>(r));
-  return it != last && *it == r && linked(it - f.shape.begin());
+  return it != last && *it == r && linked(sys.bonds.flags.trial[it - f.shape.begin()]);
 }
 
 // The sub-horizon of bond b = i→j (stencil index s): i, j and every point bonded to both, a bond
 // counting when `linked` says so (live: the current sub-horizon; in the reference family: the
 // largest it can be, the slots of the layout).
 template <int D, class Linked>
-void gather_points(const System<D>& sys, const std::vector<int>& diff, Index i, BondIndex b, double end_weight,
-                   Linked linked, std::vector<Point<D>>& pts) {
+void gather_points(const System<D>& sys, const HaloBonds& halo, const std::vector<int>& diff, Index i, BondIndex b,
+                   double end_weight, Linked linked, std::vector<Point<D>>& pts) {
   const auto& f = sys.families;
   const auto& t = sys.table;
   const auto& vol = sys.particles.volume;
@@ -81,7 +91,7 @@ void gather_points(const System<D>& sys, const std::vector<int>& diff, Index i, 
   for (BondIndex c = f.begin(i); c < f.end(i); ++c) {
     const int q = f.shape[c];
     const int r = diff[static_cast<std::size_t>(s) * n + q];
-    if (c == b || r < 0 || !linked(c) || !bonded_at(sys, j, r, linked)) continue;
+    if (c == b || r < 0 || !linked(sys.bonds.flags.trial[c]) || !bonded_at(sys, halo, j, r, linked)) continue;
     pts.push_back({t.xi[q], vol[f.neighbor[c]], f.neighbor[c]});
   }
 }
@@ -105,7 +115,8 @@ std::vector<int> reverse_table(const core::Stencil<D>& st) {
 // same inputs (verification/unit/pd/sub_horizon_test.cpp).
 template <int D>
 std::vector<std::uint8_t> bonds_to_refit(const System<D>& sys, const std::vector<int>& diff,
-                                         const std::vector<int>& reverse, const std::vector<std::uint8_t>& built_live) {
+                                         const std::vector<int>& reverse, const std::vector<std::uint8_t>& built_live,
+                                         const HaloBonds& halo, const std::vector<std::uint8_t>& built_halo) {
   const auto& f = sys.families;
   const Index n = sys.particles.n_real;
   const int ns = f.stencil.size();
@@ -119,8 +130,18 @@ std::vector<std::uint8_t> bonds_to_refit(const System<D>& sys, const std::vector
     }
     owner_changed[i] = any;
   }
-  // Whether a changed side of `owner` leads to a point of the overlap of bond offset s.
+  // Whether a changed side of `owner` leads to a point of the overlap of bond offset s (a halo
+  // particle's sides: from the halo's table, against the one last fitted).
   auto reads_a_change = [&](Index owner, int s) {
+    if (owner >= n) {
+      if (built_halo.size() != halo.flags.size()) return true;
+      const std::size_t first = static_cast<std::size_t>(owner - n) * halo.stencil;
+      for (int r = 0; r < ns; ++r)
+        if ((halo.flags[first + r] == 0) != (built_halo[first + r] == 0) &&
+            diff[static_cast<std::size_t>(s) * ns + r] >= 0)
+          return true;
+      return false;
+    }
     if (!owner_changed[owner]) return false;
     for (BondIndex c = f.begin(owner); c < f.end(owner); ++c)
       if (changed[c] && diff[static_cast<std::size_t>(s) * ns + f.shape[c]] >= 0) return true;
@@ -193,8 +214,7 @@ void fill(SubHorizon<D>& h, const System<D>& sys, const std::vector<int>& diff, 
     for (BondIndex e = first; e < last; ++e) put(e, Vec<D>::Zero(), 0.0);
     return;
   }
-  gather_points(
-      sys, diff, i, b, end_weight, [&](BondIndex c) { return sys.bonds.live(c); }, pts);
+  gather_points(sys, h.halo, diff, i, b, end_weight, live_flags, pts);
   const bool residual = fit(pts, min_points, coef);
   if (!residual) {  // the axial fallback: the two ends, the first two slots
     h.axial[b] = 1;
@@ -224,9 +244,10 @@ void fill(SubHorizon<D>& h, const System<D>& sys, const std::vector<int>& diff, 
 }  // namespace
 
 template <int D>
-SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double end_weight) {
-  if (sys.particles.n_ghost() > 0)
-    throw std::invalid_argument("hpd does not support ghost particles (symmetry planes) yet");
+SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double end_weight, const HaloBonds& halo) {
+  for (const Index owner : sys.particles.ghost_owner)
+    if (owner != core::Particles<D>::kRemoteOwner)
+      throw std::invalid_argument("hpd does not support ghost particles (symmetry planes) yet");
   const auto& f = sys.families;
   const BondIndex nb = f.n_bonds();
   const Index n = sys.particles.n_real;
@@ -235,6 +256,7 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
   h.reverse = reverse_table(f.stencil);
   const auto& diff = h.diff;
   auto in_family = [&](BondIndex c) { return sys.bonds.in_reference_family(c); };
+  h.halo = halo;
   h.begin.assign(nb + 1, 0);
   // The slots: per bond side of the reference family, its largest sub-horizon.
 #pragma omp parallel
@@ -244,7 +266,7 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
     for (Index i = 0; i < n; ++i)
       for (BondIndex b = f.begin(i); b < f.end(i); ++b)
         if (in_family(b)) {
-          gather_points(sys, diff, i, b, end_weight, in_family, pts);
+          gather_points(sys, h.halo, diff, i, b, end_weight, reference_flags, pts);
           h.begin[b + 1] = static_cast<BondIndex>(pts.size());
         }
 #pragma omp single
@@ -258,11 +280,11 @@ SubHorizon<D> SubHorizon<D>::build(const System<D>& sys, int min_points, double 
     for (Index i = 0; i < n; ++i)
       for (BondIndex b = f.begin(i); b < f.end(i); ++b)
         if (in_family(b)) {
-          gather_points(sys, diff, i, b, end_weight, in_family, pts);
+          gather_points(sys, h.halo, diff, i, b, end_weight, reference_flags, pts);
           for (std::size_t l = 0; l < pts.size(); ++l) h.point[h.begin[b] + static_cast<BondIndex>(l)] = pts[l].id;
         }
   }
-  sort_by_point(h, n);
+  sort_by_point(h, sys.particles.size());
   h.axial.assign(nb, 0);
   h.centroid.assign(nb, Vec<D>::Zero());
   h.volume_inverse.assign(nb, Mat<D>::Zero());
@@ -277,7 +299,7 @@ template <int D>
 void SubHorizon<D>::update(const System<D>& sys, int min_points, double end_weight) {
   const auto& f = sys.families;
   const BondIndex nb = f.n_bonds();
-  const auto refit = bonds_to_refit(sys, diff, reverse, built_live);
+  const auto refit = bonds_to_refit(sys, diff, reverse, built_live, halo, built_halo);
   // Each side writes its own slots and their copies by point: no two sides share a slot.
 #pragma omp parallel
   {
@@ -288,6 +310,7 @@ void SubHorizon<D>::update(const System<D>& sys, int min_points, double end_weig
       for (BondIndex b = f.begin(i); b < f.end(i); ++b)
         if (refit[b]) fill(*this, sys, diff, i, b, min_points, end_weight, pts, fitted);
   }
+  built_halo = halo.flags;
   n_axial = 0;
   for (BondIndex b = 0; b < nb; ++b) {
     built_live[b] = sys.bonds.live(b);
@@ -300,7 +323,7 @@ bool SubHorizon<D>::stale(const System<D>& sys) const {
   const BondIndex nb = sys.families.n_bonds();
   for (BondIndex b = 0; b < nb; ++b)
     if (built_live[b] != static_cast<std::uint8_t>(sys.bonds.live(b))) return true;
-  return false;
+  return halo.flags != built_halo;
 }
 
 template <int D>

@@ -30,6 +30,17 @@
 
 namespace pdmpm::pd {
 
+// The bond flags of a distributed run's halo particles: a bond i→j whose j is in the halo has
+// a sub-horizon that reads j's bonds, some to other halo particles, which live on other
+// processes. flags[g · stencil + r] is the trial flag byte of ghost g's (store index
+// n_real + g) side with stencil index r, kNoBond where it has none. Empty in one process.
+struct HaloBonds {
+  static constexpr std::uint8_t kNoBond = 0xFF;
+  int stencil = 0;
+  std::vector<std::uint8_t> flags;
+  bool empty() const { return flags.empty(); }
+};
+
 template <int D>
 struct SubHorizon {
   // Per bond side b: its slots [begin[b], begin[b + 1]) (none outside the reference family).
@@ -46,18 +57,22 @@ struct SubHorizon {
   std::vector<Mat<D>> volume_inverse;
   std::vector<double> inv_volume, inv_second_moment;
   // The same slots by point, each with its bond side and a copy of its coefficient: particle k
-  // appears in [at_begin[k], at_begin[k + 1]) (the force loop gathers them in order; copies, not
+  // (real or halo) appears in [at_begin[k], at_begin[k + 1]) (the force loop gathers them in order; copies, not
   // indices, so that it reads memory in sequence); entry_at[e] is slot e's place there.
   std::vector<BondIndex> at_begin;
   std::vector<BondIndex> at_bond;
   std::vector<Vec<D>> at_coef;
   std::vector<BondIndex> entry_at;
   std::vector<std::uint8_t> built_live;  // live bit of every bond side when last fitted
-  std::int64_t n_axial = 0;              // live bond sides on the fallback
-  std::vector<int> diff, reverse;        // stencil tables of the fits (sub_horizon.cpp)
+  // A distributed run's halo bonds (set before build and update), and as last fitted.
+  HaloBonds halo;
+  std::vector<std::uint8_t> built_halo;
+  std::int64_t n_axial = 0;        // live bond sides on the fallback
+  std::vector<int> diff, reverse;  // stencil tables of the fits (sub_horizon.cpp)
 
-  // The layout for the reference family, fitted for the live bonds.
-  static SubHorizon build(const System<D>& sys, int min_points, double end_weight);
+  // The layout for the reference family, fitted for the live bonds (`halo`: a distributed
+  // run's halo bonds).
+  static SubHorizon build(const System<D>& sys, int min_points, double end_weight, const HaloBonds& halo = {});
   // Fits again the sides the live-bit changes since the last fit can reach; the result equals
   // build() on the same system bit for bit (the reference family must not have changed).
   void update(const System<D>& sys, int min_points, double end_weight);

@@ -33,19 +33,19 @@ RelaxationResult DynamicRelaxation<D>::solve(double t, double tolerance, std::in
     // The residual and the damping's Rayleigh quotient, over the whole body in its global
     // particle order (a distributed run's sums are the one-process sums).
     const auto [r2, scale2, num, den] = p.template sum_in_order<4>([&](double* sum) {
-      double &r2 = sum[0], &scale2 = sum[1], &num = sum[2], &den = sum[3];
+      double &r2_sum = sum[0], &scale2_sum = sum[1], &num_sum = sum[2], &den_sum = sum[3];
       for (Index i : sim_.movers())
         for (int a = 0; a < D; ++a) {
           const double F = p.f[i][a] + p.b[i][a], V = p.volume[i];
           if (mask[static_cast<std::size_t>(i) * D + a]) {
-            scale2 += V * V * F * F;  // support reactions set the scale of displacement-driven problems
+            scale2_sum += V * V * F * F;  // support reactions set the scale of displacement-driven problems
             continue;
           }
-          r2 += V * V * F * F;
-          scale2 += V * V * p.b[i][a] * p.b[i][a];
+          r2_sum += V * V * F * F;
+          scale2_sum += V * V * p.b[i][a] * p.b[i][a];
           if (it > 0 && vhalf_[i][a] != 0.0)
-            num += p.u[i][a] * (-(F - fprev_[i][a]) / (lambda_[i] * vhalf_[i][a])) * p.u[i][a];
-          den += p.u[i][a] * p.u[i][a];
+            num_sum += p.u[i][a] * (-(F - fprev_[i][a]) / (lambda_[i] * vhalf_[i][a])) * p.u[i][a];
+          den_sum += p.u[i][a] * p.u[i][a];
         }
     });
     res.iterations = it;
