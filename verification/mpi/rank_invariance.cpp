@@ -17,6 +17,7 @@
 #include <iostream>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "solver/dist/communicator.hpp"
 #include "solver/io/scene.hpp"
@@ -70,6 +71,24 @@ struct Fields {
   // work, linear and angular momentum.
   std::vector<double> sums;
 };
+
+// A bitwise-identity gate: `measured` values differ in any bit, plus one for each `unfit` reason
+// the case gives (it would not test the claim), each printed.
+test::Gate identity_gate(const std::string& id, const std::string& claim, std::size_t measured,
+                         const std::string& reason, const std::vector<std::string>& unfit) {
+  test::Gate g{.id = id,
+               .claim = claim + " (measured: values that differ in any bit)",
+               .measured = static_cast<double>(measured + unfit.size()),
+               .expected = 0.0,
+               .tolerance = 0.0,
+               .compare = test::Compare::abs,
+               .tolerance_reason = "Bitwise identity is the claim: " + reason,
+               .source = "[pdmpm] docs/models/distributed.md",
+               .unit = "",
+               .problem = "distributed"};
+  for (const auto& why : unfit) std::cerr << id << ": " << why << "\n";
+  return g;
+}
 
 template <int D>
 Fields run(const io::Scene& scene, const dist::Communicator* comm, double& dt, int steps) {
@@ -143,33 +162,23 @@ bool check(const std::string& model, const dist::Communicator& comm, json& rows)
   std::int64_t broken = 0;
   for (const auto fl : one.flags) broken += (fl & pd::kBondBroken) != 0;
   const std::string dim = std::to_string(D) + "d", ranks = std::to_string(comm.size());
-  test::Gate g{.id = "distributed." + model + "." + dim + "." + ranks + "_ranks",
-               .claim = "A fracturing " + dim + " body (" + model + ", " + std::to_string(steps) + " steps, " +
-                   std::to_string(broken / 2) + " bonds broken, " + std::to_string(across / 2) +
-                   " of them across process boundaries) shall give bitwise identical displacements, velocities, "
-                   "forces, bond flags, damage, energies, work and momenta on " +
-                   ranks + " processes as on one (measured: values that differ in any bit)",
-               .measured = static_cast<double>(du + dv + df + dd + dflags + dsums),
-               .expected = 0.0,
-               .tolerance = 0.0,
-               .compare = test::Compare::abs,
-               .tolerance_reason =
-                   "Bitwise identity is the claim: each process builds its particles' families by the same lattice "
-                   "offsets, the halo brings it its neighbours' exact state, and every force is gathered per "
-                   "particle in the same order, so no rounding may depend on the process count.",
-               .source = "[pdmpm] docs/models/distributed.md",
-               .unit = "",
-               .problem = "distributed"};
   // A case that would not test the claim fails: a crack that stays inside one process,
   // or a body left without stress (a wrong halo state would leave no trace).
-  if (comm.size() > 1 && across == 0) {
-    g.measured += 1.0;
-    std::cerr << g.id << ": no broken bond crosses a process boundary\n";
-  }
-  if (!(one.largest_force > 0.0) || broken == 0) {
-    g.measured += 1.0;
-    std::cerr << g.id << ": nothing broke, or no force is left at the end\n";
-  }
+  std::vector<std::string> unfit;
+  if (comm.size() > 1 && across == 0) unfit.push_back("no broken bond crosses a process boundary");
+  if (!(one.largest_force > 0.0) || broken == 0) unfit.push_back("nothing broke, or no force is left at the end");
+  const test::Gate g = identity_gate(
+      "distributed." + model + "." + dim + "." + ranks + "_ranks",
+      "A fracturing " + dim + " body (" + model + ", " + std::to_string(steps) + " steps, " +
+          std::to_string(broken / 2) + " bonds broken, " + std::to_string(across / 2) +
+          " of them across process boundaries) shall give bitwise identical displacements, velocities, forces, bond "
+          "flags, damage, energies, work and momenta on " +
+          ranks + " processes as on one",
+      du + dv + df + dd + dflags + dsums,
+      "each process builds its particles' families by the same lattice offsets, the halo brings it its neighbours' "
+      "exact state, and every force is gathered per particle in the same order, so no rounding may depend on the "
+      "process count.",
+      unfit);
   const bool ok = test::write_gate(g, "rank_invariance");
   rows.push_back({model, dim, comm.size(), static_cast<double>(one.damage.size()), halo, halo_share, sent, steps,
                   broken / 2, across / 2, static_cast<double>(du), static_cast<double>(dv), static_cast<double>(df),
@@ -261,32 +270,23 @@ bool check_mpm(const std::string& scheme, const dist::Communicator& comm, json& 
   const std::size_t du = differing(one.u, u), dv = differing(one.v, v), dstate = differing(one.f, state),
                     deps = differing(one.damage, eps), dsums = differing(one.sums, many.sums);
   const std::string dim = std::to_string(D) + "d", ranks = std::to_string(comm.size());
-  test::Gate g{.id = "distributed.mpm_" + scheme + "." + dim + "." + ranks + "_ranks",
-               .claim = "A " + dim + " MPM body (uGIMP, " + scheme + ", J2, " + std::to_string(steps) + " steps, " +
-                   std::to_string(one.broken_across) +
-                   " points failed) shall give bitwise identical u, v, F, τ, ε̄_p, failure flags, energies, work, "
-                   "mass, momentum, reactions and pending boundary work on " +
-                   ranks + " processes as on one (measured: values that differ in any bit)",
-               .measured = static_cast<double>(du + dv + dstate + deps + dfailed + dsums),
-               .expected = 0.0,
-               .tolerance = 0.0,
-               .compare = test::Compare::abs,
-               .tolerance_reason =
-                   "Bitwise identity is the claim: every grid node sums the points that reach it in one process's "
-                   "order (the ghosts bring the other processes' points), each point's update reads only its nodes, "
-                   "and the grid's and points' sums are taken in one process's order.",
-               .source = "[pdmpm] docs/models/distributed.md",
-               .unit = "",
-               .problem = "distributed"};
   // A case that would not test the claim fails: no ghosts, nothing failed, no stress left.
-  if (comm.size() > 1 && ghosts == 0) {
-    g.measured += 1.0;
-    std::cerr << g.id << ": no ghost points\n";
-  }
-  if (one.broken_across == 0 || !(one.largest_force > 0.0)) {
-    g.measured += 1.0;
-    std::cerr << g.id << ": no point failed, or no stress is left at the end\n";
-  }
+  std::vector<std::string> unfit;
+  if (comm.size() > 1 && ghosts == 0) unfit.push_back("no ghost points");
+  if (one.broken_across == 0 || !(one.largest_force > 0.0))
+    unfit.push_back("no point failed, or no stress is left at the end");
+  const test::Gate g = identity_gate(
+      "distributed.mpm_" + scheme + "." + dim + "." + ranks + "_ranks",
+      "A " + dim + " MPM body (uGIMP, " + scheme + ", J2, " + std::to_string(steps) + " steps, " +
+          std::to_string(one.broken_across) +
+          " points failed) shall give bitwise identical u, v, F, τ, ε̄_p, failure flags, energies, work, mass, "
+          "momentum, reactions and pending boundary work on " +
+          ranks + " processes as on one",
+      du + dv + dstate + deps + dfailed + dsums,
+      "every grid node sums the points that reach it in one process's order (the ghosts bring the other processes' "
+      "points), each point's update reads only its nodes, and the grid's and points' sums are taken in one "
+      "process's order.",
+      unfit);
   const bool ok = test::write_gate(g, "rank_invariance");
   rows.push_back({"mpm (" + scheme + ")", dim, comm.size(), static_cast<double>(one.flags.size()), ghosts, ghost_share,
                   0, steps, one.broken_across, 0, static_cast<double>(du), static_cast<double>(dv),
