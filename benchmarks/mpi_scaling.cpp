@@ -52,6 +52,22 @@ struct Measured {
   double largest_halo = 0.0;
 };
 
+// Wall seconds of `steps` calls of step() on every process, between barriers; the counts of
+// own and halo particles (MPM: ghosts) over the processes.
+template <class Step>
+Measured timed(const dist::Communicator& comm, int steps, Step&& step, Index own, Index halo) {
+  comm.barrier();
+  const double t0 = MPI_Wtime();
+  for (int k = 0; k < steps; ++k) step();
+  comm.barrier();
+  Measured m;
+  m.seconds = MPI_Wtime() - t0;
+  m.particles = comm.sum(own);
+  m.halo = comm.sum(halo);
+  m.largest_halo = comm.max(static_cast<double>(halo) / static_cast<double>(own));
+  return m;
+}
+
 Measured run_lps(const dist::Communicator& comm, int nx, int n, int steps) {
   const auto scene = io::parse_scene_text(block_scene(nx, n, n), "mpi_scaling");
   auto setup = sim::build_pd<3>(scene, &comm);
@@ -61,15 +77,8 @@ Measured run_lps(const dist::Communicator& comm, int nx, int n, int steps) {
   auto st = sim::make_simulation(setup);
   time::VelocityVerlet<3> stepper(st, dt);
   stepper.start();
-  comm.barrier();
-  const double t0 = MPI_Wtime();
-  for (int k = 0; k < steps; ++k) stepper.step(false);
-  comm.barrier();
-  Measured m;
-  m.seconds = MPI_Wtime() - t0;
-  m.particles = comm.sum(p.n_real);
-  m.halo = comm.sum(p.n_ghost());
-  m.largest_halo = comm.max(static_cast<double>(p.n_ghost()) / static_cast<double>(p.n_real));
+  Measured m = timed(
+      comm, steps, [&] { stepper.step(false); }, p.n_real, p.n_ghost());
   m.sent = setup.ownership ? comm.sum(setup.ownership->values_sent) : 0;
   return m;
 }
@@ -80,16 +89,8 @@ Measured run_mpm(const dist::Communicator& comm, int nx, int n, int steps) {
   mpm::Simulation<2> sim(setup.settings, setup.particles, scene.file, "mpm", setup.others);
   const double dt = 0.5 * sim.stable_dt();
   for (int k = 0; k < 5; ++k) sim.step(dt);  // the grips start the body moving
-  comm.barrier();
-  const double t0 = MPI_Wtime();
-  for (int k = 0; k < steps; ++k) sim.step(dt);
-  comm.barrier();
-  Measured m;
-  m.seconds = MPI_Wtime() - t0;
-  m.particles = comm.sum(setup.particles.n_real);
-  m.halo = comm.sum(sim.ghost_points());
-  m.largest_halo = comm.max(static_cast<double>(sim.ghost_points()) / static_cast<double>(setup.particles.n_real));
-  return m;
+  return timed(
+      comm, steps, [&] { sim.step(dt); }, setup.particles.n_real, sim.ghost_points());
 }
 
 }  // namespace

@@ -1,7 +1,6 @@
 #include "solver/dist/particle_share.hpp"
 
 #include <limits>
-#include <numeric>
 #include <stdexcept>
 
 namespace pdmpm::dist {
@@ -43,16 +42,6 @@ std::vector<double> ParticleShare::send(int width, const std::function<void(Inde
   MPI_Alltoallv(out.data(), send_count.data(), send_offset.data(), MPI_DOUBLE, in.data(), receive_count.data(),
                 receive_offset.data(), MPI_DOUBLE, comm_.handle());
   return in;
-}
-
-std::int64_t ParticleShare::points_sent() const {
-  std::int64_t n = 0;
-  for (const auto& s : send_) n += static_cast<std::int64_t>(s.size());
-  return n;
-}
-
-std::int64_t ParticleShare::points_received() const {
-  return std::accumulate(receive_count_.begin(), receive_count_.end(), std::int64_t{0});
 }
 
 }  // namespace pdmpm::dist

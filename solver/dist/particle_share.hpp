@@ -26,10 +26,6 @@ class ParticleShare final : public mpm::OtherProcesses {
   double max(double local) const override { return comm_.max(local); }
   std::vector<double> all_gather(const std::vector<double>& local) const override { return comm_.all_gather(local); }
 
-  // Points sent and received by the last plan (the communication volume).
-  std::int64_t points_sent() const;
-  std::int64_t points_received() const;
-
  private:
   Communicator comm_;
   OwnedRange own_;

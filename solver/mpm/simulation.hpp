@@ -20,7 +20,6 @@
 // F is updated by the Cayley increment (kinematics.hpp), so a rigid rotation of
 // the grid velocity field rotates each particle exactly.
 #include <cstdint>
-#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -165,7 +164,7 @@ class Simulation {
   template <int N, class Fn>
   Eigen::Matrix<double, N, 1> sum_over_points(Fn&& term) const;
   // Σ term(i) over the grid nodes in deterministic_sum's chunks; distributed, each node's
-  // term from the process that owns it (shared_.owned_node), gathered in node order.
+  // term from the process that books it (owned_node_), gathered in node order.
   template <int N, class Fn>
   Eigen::Matrix<double, N, 1> sum_over_nodes(Fn&& term) const;
   // Distributed: own points and ghosts, merged in global order.
@@ -222,7 +221,7 @@ class Simulation {
   // per node whether this process books it in the grid's sums (receive_ghosts).
   std::shared_ptr<OtherProcesses> others_;
   ScatterSet shared_;
-  std::vector<Index> shared_points_, ghost_global_;
+  std::vector<Index> ghost_global_;
   std::vector<std::uint8_t> owned_node_;
   Index ghosts_seen_ = 0;
   const ScatterSet& scatter_set() const { return others_ ? shared_ : own_; }

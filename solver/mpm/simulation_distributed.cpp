@@ -44,17 +44,6 @@ void for_each_in_box(const IVec<D>& lo, const IVec<D>& hi, const IVec<D>& dims, 
   }
 }
 
-// fn(node) for the K^D nodes of a stencil whose first node is `first`.
-template <int D, class Fn>
-void for_each_stencil_node(const IVec<D>& first, int K, const IVec<D>& stride, Fn&& fn) {
-  Index base = 0;
-  for (int a = 0; a < D; ++a) base += first[a] * stride[a];
-  const Index s1 = D > 1 ? stride[std::min(1, D - 1)] : 0, s2 = D > 2 ? stride[std::min(2, D - 1)] : 0;
-  for (int k = 0; k < (D > 2 ? K : 1); ++k)
-    for (int j = 0; j < (D > 1 ? K : 1); ++j)
-      for (int i = 0; i < K; ++i) fn(base + k * s2 + j * s1 + i);
-}
-
 // Ghost records: global index, position, GIMP half-widths, mass, velocity, volume, τ
 // (the D × D block the scatter reads), external force, failed.
 template <int D>
@@ -171,26 +160,23 @@ void Simulation<D>::receive_ghosts() {
 
 template <int D>
 std::vector<Index> Simulation<D>::own_and_ghosts() const {
+  // The ghosts of lower processes (global index below this process's first), the own points,
+  // the ghosts of higher processes.
+  const Index first = others_->first_global(), n_real = particles_.n_real;
+  const auto ghosts = static_cast<Index>(ghost_global_.size());
+  const auto lower =
+      static_cast<Index>(std::lower_bound(ghost_global_.begin(), ghost_global_.end(), first) - ghost_global_.begin());
   std::vector<Index> points;
   points.reserve(active_.size() + ghost_global_.size());
-  const Index first = others_->first_global(), n_real = particles_.n_real;
-  std::size_t k = 0;
-  // Ghosts of lower processes come before the own points, the others' after them.
-  for (Index g = 0; g < static_cast<Index>(ghost_global_.size()); ++g) {
-    if (ghost_global_[g] > first && k == 0) {
-      points.insert(points.end(), active_.begin(), active_.end());
-      k = active_.size() + 1;
-    }
-    points.push_back(n_real + g);
-  }
-  if (k == 0) points.insert(points.end(), active_.begin(), active_.end());
+  for (Index g = 0; g < lower; ++g) points.push_back(n_real + g);
+  points.insert(points.end(), active_.begin(), active_.end());
+  for (Index g = lower; g < ghosts; ++g) points.push_back(n_real + g);
   return points;
 }
 
 template <int D>
 void Simulation<D>::build_shared_scatter() {
-  shared_points_ = own_and_ghosts();
-  compute_stencils(shared_points_, shared_);
+  compute_stencils(own_and_ghosts(), shared_);
   const std::vector<Index>& order = shared_.schedule.order();
   // The own points' stencils, in their schedule's order: the same blocks, each in global
   // order, so the shared order with the ghosts left out.

@@ -54,8 +54,7 @@ void Hpd<D>::initialise(const System<D>& sys) {
   residual_force_.assign(stabilization_ > 0.0 ? sub_.at_bond.size() : 0, Vec<D>::Zero());
   if (remote_) {
     index_remote_slots(sys);
-    remote_rows_ = send_halo_slots(
-        sys, 2, [&](Index k, BondIndex q, double* out) { std::tie(out[0], out[1]) = slot_stiffness(sys, k, q); });
+    exchange_stiffness_rows(sys);
   }
 }
 
@@ -221,8 +220,7 @@ void Hpd<D>::midpoint_forces(System<D>& sys, const ForceRequest& req) {
     sub_.halo = halo_bonds(sys);
     if (remote_->max(sub_.stale(sys) ? 1.0 : 0.0) > 0.0) {
       sub_.update(sys, min_points_, end_weight_);
-      remote_rows_ = send_halo_slots(
-          sys, 2, [&](Index k, BondIndex q, double* out) { std::tie(out[0], out[1]) = slot_stiffness(sys, k, q); });
+      exchange_stiffness_rows(sys);
     }
   } else if (sub_.stale(sys)) {
     sub_.update(sys, min_points_, end_weight_);
@@ -381,6 +379,12 @@ std::vector<std::vector<double>> Hpd<D>::send_halo_slots(const System<D>& sys, i
     }
   }
   return remote_->send_to(to);
+}
+
+template <int D>
+void Hpd<D>::exchange_stiffness_rows(const System<D>& sys) {
+  remote_rows_ = send_halo_slots(
+      sys, 2, [&](Index k, BondIndex q, double* out) { std::tie(out[0], out[1]) = slot_stiffness(sys, k, q); });
 }
 
 template <int D>

@@ -147,6 +147,7 @@ class Hpd final : public Model<D> {
   std::vector<std::vector<double>> remote_forces_, remote_rows_;  // the records received, per process
   HaloBonds halo_bonds(const System<D>& sys) const;
   void index_remote_slots(const System<D>& sys);
+  void exchange_stiffness_rows(const System<D>& sys);  // the halo slots' Gershgorin terms to their owners
   // Records of `width` values for the halo points' slots (fn(point, slot, out)), to their owners.
   template <class Fn>
   std::vector<std::vector<double>> send_halo_slots(const System<D>& sys, int width, Fn&& fn) const;

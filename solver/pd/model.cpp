@@ -41,11 +41,13 @@ ModelInfo row(std::string name, bool state_based, bool pair_potential, bool plas
 }  // namespace
 
 const std::vector<ModelInfo>& model_table() {
-  //                        name           state-based pair potential plastic symmetry planes distributed
-  static const std::vector<ModelInfo> table = {row<Pmb>("pmb", false, true, false, true, true),
-                                               row<Lps>("lps", true, false, false, true, true),
-                                               row<LpsPlastic>("lps_plastic", true, false, true, false, true),
-                                               row<Hpd>("hpd", true, false, false, false, true)};
+  // name, state-based, pair potential, plastic, symmetry planes, distributed
+  static const std::vector<ModelInfo> table = {
+      row<Pmb>("pmb", false, true, false, true, true),
+      row<Lps>("lps", true, false, false, true, true),
+      row<LpsPlastic>("lps_plastic", true, false, true, false, true),
+      row<Hpd>("hpd", true, false, false, false, true),
+  };
   return table;
 }
 
