@@ -4,7 +4,8 @@
 # build/results/bench/), run the performance driver (memory per bond, kernel
 # thread scaling and roofline, the cost of plasticity and of hpd, the MPM step against PD by
 # phase, pdmpm next to LAMMPS; build/results/bench/perf/,
-# gates of the "performance" report section), then regenerate the report.
+# gates of the "performance" report section), the distributed throughput and its projection
+# (ci/mpi_scaling.sh, the report's "distributed" section), then regenerate the report.
 #
 #   ci/bench.sh                  # the full measurement (about 7 min on 2 cores, plus the build)
 #   QUICK=1 ci/bench.sh          # a short check that everything runs (small problem, few repetitions)
@@ -20,7 +21,7 @@ cd "$(dirname "$0")/.."
 ci/install_deps.sh
 cmake --preset release -DPDMPM_BUILD_BENCHMARKS=ON
 # Only what this command runs (the tests and gates are ci/main.sh's).
-cmake --build --preset release -j "$(nproc)" --target pdmpm_bench pdmpm_perf
+cmake --build --preset release -j "$(nproc)" --target pdmpm_bench pdmpm_perf pdmpm_mpi_scaling
 
 results=build/results
 rm -rf "$results/bench" "$results/data/performance" "$results"/gates/performance.*.json
@@ -41,6 +42,8 @@ echo "bench: Google Benchmark suite → $results/bench/pdmpm_bench.json"
 OMP_NUM_THREADS=1 build/benchmarks/pdmpm_bench "${bench_args[@]}" --benchmark_format=console
 echo "bench: performance driver → $results/bench/perf/"
 OMP_NUM_THREADS=1 build/benchmarks/pdmpm_perf "${perf_args[@]}"
+echo "bench: distributed throughput → $results/data/distributed/scaling*.json"
+ci/mpi_scaling.sh build "$([ "${QUICK:-0}" = "1" ] && echo 1 || echo 3)"
 
 # The report exits 1 when any gate fails, performance targets included: a result
 # to read on the page, not a failure of this command.

@@ -12,14 +12,27 @@
 
 namespace pdmpm::bc {
 
+namespace {
+
+std::int32_t reach_in_sites(double reach, double dx) {
+  return static_cast<std::int32_t>(std::floor(reach / dx * (1.0 + 1e-10)));
+}
+
+// Twice the plane's site coordinate (an integer for a checked plane).
 template <int D>
-void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach,
-                         const std::string& file) {
-  const double dx = p.lattice.spacing;
+double twice_site(const core::Particles<D>& p, const SymmetryPlane& plane) {
+  return 2.0 * (plane.position - p.lattice.origin[plane.axis]) / p.lattice.spacing;
+}
+
+}  // namespace
+
+template <int D>
+void check_symmetry_planes(const core::Particles<D>& body, const std::vector<SymmetryPlane>& planes, double reach,
+                           const std::string& file) {
+  const double dx = body.lattice.spacing;
   for (const auto& plane : planes) {
     const int a = plane.axis;
-    // Twice the plane's site coordinate must be an integer.
-    const double twice = 2.0 * (plane.position - p.lattice.origin[a]) / dx;
+    const double twice = twice_site(body, plane);
     const double rounded = std::round(twice);
     if (std::abs(twice - rounded) > 1e-6)
       throw InputError(file, plane.key + ".position",
@@ -27,27 +40,35 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
                        "(position = origin + k Δx/2)");
     // The plane must touch the body (within the family reach of a particle): one
     // farther away mirrors nothing, and its site coordinate may not fit an integer.
-    const auto reach_sites = static_cast<std::int32_t>(std::floor(reach / dx * (1.0 + 1e-10)));
+    const auto reach_sites = reach_in_sites(reach, dx);
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (Index i = 0; i < p.n_real; ++i) {
-      lo = std::min<double>(lo, p.site[i][a]);
-      hi = std::max<double>(hi, p.site[i][a]);
+    for (Index i = 0; i < body.n_real; ++i) {
+      lo = std::min<double>(lo, body.site[i][a]);
+      hi = std::max<double>(hi, body.site[i][a]);
     }
     if (!(rounded >= 2.0 * (lo - reach_sites) && rounded <= 2.0 * (hi + reach_sites)))
       throw InputError(file, plane.key + ".position",
                        fmt::format("the plane at {} m lies beyond the body's reach; a symmetry plane must touch the "
                                    "body (between {} and {} m on this axis)",
-                                   plane.position, p.lattice.origin[a] + (lo - reach_sites) * dx,
-                                   p.lattice.origin[a] + (hi + reach_sites) * dx));
+                                   plane.position, body.lattice.origin[a] + (lo - reach_sites) * dx,
+                                   body.lattice.origin[a] + (hi + reach_sites) * dx));
     const auto two_p = static_cast<std::int32_t>(rounded);
     bool below = false, above = false;
-    for (Index i = 0; i < p.n_real; ++i) {
-      below = below || 2 * p.site[i][a] < two_p;
-      above = above || 2 * p.site[i][a] > two_p;
+    for (Index i = 0; i < body.n_real; ++i) {
+      below = below || 2 * body.site[i][a] < two_p;
+      above = above || 2 * body.site[i][a] > two_p;
     }
     if (below && above)
       throw InputError(file, plane.key, "the body lies on both sides of this symmetry plane; keep only one half");
+  }
+}
 
+template <int D>
+void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach) {
+  const auto reach_sites = reach_in_sites(reach, p.lattice.spacing);
+  for (const auto& plane : planes) {
+    const int a = plane.axis;
+    const auto two_p = static_cast<std::int32_t>(std::round(twice_site(p, plane)));
     std::set<std::vector<std::int32_t>> occupied;
     for (const auto& s : p.site) occupied.insert(std::vector<std::int32_t>(s.data(), s.data() + D));
     const Index existing = p.size();
@@ -59,9 +80,11 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
       std::vector<std::int32_t> key(m.data(), m.data() + D);
       if (occupied.count(key)) continue;
       occupied.insert(key);
-      const bool is_ghost = i >= p.n_real;
-      const Index owner = is_ghost ? p.ghost_owner[i - p.n_real] : i;
-      Vec<D> sign = is_ghost ? p.ghost_sign[i - p.n_real] : Vec<D>::Ones();
+      // A mirror's owner is a particle of p: a real one, or a remote ghost whose values
+      // arrive before the mirrors are updated (core::Particles::update_ghosts).
+      const bool mirror = i >= p.n_real && p.ghost_owner[i - p.n_real] != core::Particles<D>::kRemoteOwner;
+      const Index owner = mirror ? p.ghost_owner[i - p.n_real] : i;
+      Vec<D> sign = mirror ? p.ghost_sign[i - p.n_real] : Vec<D>::Ones();
       sign[a] = -sign[a];
       p.push_back(m, p.volume[i]);
       p.ghost_owner.push_back(owner);
@@ -70,11 +93,14 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
   }
 }
 
-template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double,
-                                     const std::string&);
-template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double,
-                                     const std::string&);
-template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double,
-                                     const std::string&);
+template void check_symmetry_planes<1>(const core::Particles<1>&, const std::vector<SymmetryPlane>&, double,
+                                       const std::string&);
+template void check_symmetry_planes<2>(const core::Particles<2>&, const std::vector<SymmetryPlane>&, double,
+                                       const std::string&);
+template void check_symmetry_planes<3>(const core::Particles<3>&, const std::vector<SymmetryPlane>&, double,
+                                       const std::string&);
+template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double);
+template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double);
+template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double);
 
 }  // namespace pdmpm::bc

@@ -16,11 +16,27 @@ struct SymmetryPlane {
   double position = 0.0;
 };
 
-// Appends the ghosts of all planes (and of their intersections) to p.
-// `reach` is the family radius in metres. Throws InputError when a plane is off
-// the lattice or the body lies on both sides of it.
+// Throws InputError when a plane is off the lattice, beyond the body's reach or has the
+// body on both sides. `body` holds the whole body's real particles; `reach` is the family
+// radius in metres.
+template <int D>
+void check_symmetry_planes(const core::Particles<D>& body, const std::vector<SymmetryPlane>& planes, double reach,
+                           const std::string& file);
+
+// Appends the ghosts of all checked planes (and of their intersections) to p: a mirror of
+// every particle of p (real or ghost) within `reach` of a plane whose site is free. In a
+// distributed run p is a process's store (own particles and their halo): a mirror within a
+// family of an own particle mirrors a particle at least as close to it (both lie on the same
+// side of the plane), which is own or in the halo, so every mirror a family needs is made.
+template <int D>
+void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach);
+
+// Both, on a one-process body.
 template <int D>
 void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach,
-                         const std::string& file);
+                         const std::string& file) {
+  check_symmetry_planes(p, planes, reach, file);
+  add_symmetry_ghosts(p, planes, reach);
+}
 
 }  // namespace pdmpm::bc

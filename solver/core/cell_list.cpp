@@ -21,11 +21,26 @@ void CellList<D>::build(const std::vector<Vec<D>>& points, double cell_size) {
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  fill(points, lo, hi, nullptr);
+}
+
+template <int D>
+void CellList<D>::build(const std::vector<Vec<D>>& points, double cell_size, const Vec<D>& lo, const Vec<D>& hi,
+                        const std::vector<Index>& order) {
+  if (order.size() != points.size()) throw RunError("cell list: the order does not list every point once");
+  h_ = cell_size;
+  fill(points, lo, hi, &order);
+}
+
+template <int D>
+void CellList<D>::fill(const std::vector<Vec<D>>& points, const Vec<D>& lo, const Vec<D>& hi,
+                       const std::vector<Index>* order) {
   lo_ = lo;
   std::int64_t total = 1;
   for (int a = 0; a < D; ++a) {
-    // Cap the grid so a body flying apart cannot ask for unbounded memory.
-    const double cells = std::floor((hi[a] - lo[a]) / h_) + 1.0;
+    // Cap the grid so a body flying apart cannot ask for unbounded memory; an empty box
+    // (no points) is one cell.
+    const double cells = hi[a] >= lo[a] ? std::floor((hi[a] - lo[a]) / h_) + 1.0 : 1.0;
     n_[a] = static_cast<std::int32_t>(std::min(cells, 1e6));
     total *= n_[a];
   }
@@ -38,8 +53,11 @@ void CellList<D>::build(const std::vector<Vec<D>>& points, double cell_size) {
   }
   for (std::int64_t k = 0; k < total; ++k) start_[k + 1] += start_[k];
   items_.resize(points.size());
-  std::vector<std::int64_t> fill(start_.begin(), start_.end() - 1);
-  for (std::size_t i = 0; i < points.size(); ++i) items_[fill[cell[i]]++] = static_cast<Index>(i);
+  std::vector<std::int64_t> next(start_.begin(), start_.end() - 1);
+  for (std::size_t s = 0; s < points.size(); ++s) {
+    const auto i = order ? static_cast<std::size_t>((*order)[s]) : s;
+    items_[next[cell[i]]++] = static_cast<Index>(i);
+  }
 }
 
 template class CellList<1>;

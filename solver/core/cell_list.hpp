@@ -10,7 +10,12 @@ namespace pdmpm::core {
 template <int D>
 class CellList {
  public:
+  // Cells over the points' bounding box; a cell's points in index order.
   void build(const std::vector<Vec<D>>& points, double cell_size);
+  // Cells over [lo, hi] (a box that holds every point, e.g. a distributed body's, agreed by
+  // every process); a cell's points in the order of `order` (a permutation of the indices).
+  void build(const std::vector<Vec<D>>& points, double cell_size, const Vec<D>& lo, const Vec<D>& hi,
+             const std::vector<Index>& order);
 
   // Calls f(j) for every point in the 3^D cells around x (a superset of the
   // points within one cell size of x), in a fixed order.
@@ -49,6 +54,8 @@ class CellList {
     for (int a = D - 1; a >= 0; --a) k = k * n_[a] + c[a];
     return k;
   }
+
+  void fill(const std::vector<Vec<D>>& points, const Vec<D>& lo, const Vec<D>& hi, const std::vector<Index>* order);
 
   Vec<D> lo_ = Vec<D>::Zero();
   double h_ = 1.0;

@@ -103,6 +103,11 @@ struct Particles {
 
   // Copy each owner's displacement and velocity, reflected, into its ghosts.
   void update_ghosts() {
+    // Remote ghosts first: a mirror may mirror one.
+    if (remote) {
+      remote->fill(u.data()->data(), D);
+      remote->fill(v.data()->data(), D);
+    }
     const Index ng = n_ghost();
     for (Index g = 0; g < ng; ++g) {
       const Index o = ghost_owner[g], i = n_real + g;
@@ -110,19 +115,15 @@ struct Particles {
       u[i] = u[o].cwiseProduct(ghost_sign[g]);
       v[i] = v[o].cwiseProduct(ghost_sign[g]);
     }
-    if (remote) {
-      remote->fill(u.data()->data(), D);
-      remote->fill(v.data()->data(), D);
-    }
   }
 
   // A per-particle scalar (an orientation-free quantity: dilatation, weighted volume)
   // in the ghosts' entries: their owner's value.
   void fill_ghosts(std::vector<double>& a) const {
+    if (remote) remote->fill(a.data(), 1);  // first: a mirror may mirror a remote ghost
     const Index ng = n_ghost();
     for (Index g = 0; g < ng; ++g)
       if (ghost_owner[g] != kRemoteOwner) a[n_real + g] = a[ghost_owner[g]];
-    if (remote) remote->fill(a.data(), 1);
   }
 
   // N sums over particles from `start`, taken in the global particle order: add_own(s)

@@ -87,7 +87,7 @@ void HaloExchange::index_bond_sides(const std::vector<BondIndex>& offsets, const
   for (Index i = 0; i + 1 < static_cast<Index>(offsets.size()); ++i)
     for (BondIndex b = offsets[i]; b < offsets[i + 1]; ++b) {
       const Index j = neighbor[b];
-      if (j < n_real_) continue;
+      if (j < n_real_ || j >= n_real_ + static_cast<Index>(halo_.size())) continue;  // own, or a mirror
       const Index gi = first_global_ + i, gj = halo_[j - n_real_];
       by_rank[owner_rank(gj, n_body_, comm_.size())].push_back({std::min(gi, gj), std::max(gi, gj), b});
     }

@@ -386,7 +386,7 @@ nlohmann::json PdRun<D>::summary() const {
       {"horizon", sys.delta},
       {"horizon_ratio", sys.delta / sys.spacing()},
       {"particles", particles()},
-      {"ghost_particles", everywhere(p_.n_ghost() - halo)},
+      {"ghost_particles", s_.symmetry_ghosts},
       {"bonds", bond_sides / 2},
       {"bond_sides", bond_sides},
       {"integrator", dynamic ? "verlet" : "adr"},
@@ -416,6 +416,13 @@ nlohmann::json PdRun<D>::summary() const {
   }
   if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
   if (s_.ownership) j["halo_particles"] = everywhere(halo);
+  if (s_.ownership && s_.contact) j["contact_pairs_across_processes"] = s_.contact->most_pairs_across_processes();
+  if (s_.ownership && s_.symmetry_ghosts > 0) {
+    // Mirrors of another process's particles (held in the halo): what shows the run tests them.
+    Index of_halo = 0;
+    for (const Index o : p_.ghost_owner) of_halo += o >= p_.n_real;
+    j["mirrors_of_halo_particles"] = everywhere(of_halo);
+  }
   if (!dynamic) {
     j["metrics"]["adr_iterations_last"] = relax_.iterations;
     j["metrics"]["adr_residual"] = relax_.residual;

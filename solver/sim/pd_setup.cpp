@@ -53,9 +53,32 @@ void check_distributable(const io::Scene& s) {
   };
   if (!pd::model_info(s.model).distributed)
     refuse("model.type", "model \"" + s.model + "\" (its forces reach beyond a horizon's halo)");
-  if (!s.symmetries.empty()) refuse(s.symmetries.front().key, "a symmetry plane");
-  if (s.contact.enabled) refuse("model.contact", "short-range contact");
+  // A distributed contact list holds the processes' own particles, not their mirrors.
+  if (!s.symmetries.empty() && s.contact.enabled)
+    refuse(s.symmetries.front().key, "a symmetry plane with short-range contact");
   if (s.crack.enabled) refuse("crack", "crack tracking");
+}
+
+std::vector<bc::SymmetryPlane> symmetry_planes(const io::Scene& s) {
+  std::vector<bc::SymmetryPlane> planes;
+  for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
+  return planes;
+}
+
+double family_reach(const io::Scene& s) { return pd::family_ratio(s.partial_volume, s.delta, s.spacing) * s.spacing; }
+
+template <int D>
+void check_symmetry_planes(const io::Scene& s, const core::Particles<D>& body) {
+  bc::check_symmetry_planes<D>(body, symmetry_planes(s), family_reach(s), s.file);
+}
+
+// The mirrors one process makes for the whole body (a distributed run's summary reports them).
+template <int D>
+Index count_symmetry_ghosts(const io::Scene& s, const core::Particles<D>& body) {
+  if (s.symmetries.empty()) return 0;
+  auto whole = body;
+  bc::add_symmetry_ghosts<D>(whole, symmetry_planes(s), family_reach(s));
+  return whole.n_ghost();
 }
 
 }  // namespace
@@ -73,6 +96,8 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   const auto everywhere = [&](std::int64_t local) { return distributed ? comm->sum(local) : local; };
   if (distributed) {
     check_distributable(s);
+    check_symmetry_planes<D>(s, sys.particles);  // on the whole body; the mirrors are made per process below
+    out.symmetry_ghosts = count_symmetry_ghosts<D>(s, sys.particles);
     out.ownership.emplace();
     const Index n = sys.particles.n_real;
     sys.particles = dist::distribute<D>(*comm, sys.particles, pd::family_ratio(s.partial_volume, s.delta, s.spacing),
@@ -100,10 +125,9 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   sys.yield_on_live_bonds = s.yield_on_live_bonds;
   sys.hpd = s.hpd;
 
-  std::vector<bc::SymmetryPlane> planes;
-  for (const auto& sym : s.symmetries) planes.push_back({sym.key, sym.axis, sym.position});
-  bc::add_symmetry_ghosts<D>(sys.particles, planes, pd::family_ratio(s.partial_volume, s.delta, s.spacing) * s.spacing,
-                             s.file);
+  if (!distributed) check_symmetry_planes<D>(s, sys.particles);
+  bc::add_symmetry_ghosts<D>(sys.particles, symmetry_planes(s), family_reach(s));
+  if (!distributed) out.symmetry_ghosts = sys.particles.n_ghost();
   sys.connect();
   if (out.ownership) out.ownership->exchange->index_bond_sides(sys.families.offsets, sys.families.neighbor);
 

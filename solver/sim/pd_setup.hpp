@@ -39,6 +39,7 @@ struct PdSetup {
   bool damage = false;
   bool break_after_force = false;  // LAMMPS' bond-break timing (scene model.break_timing)
   std::int64_t precrack_cut = 0;   // bond sides cut by pre-cracks
+  Index symmetry_ghosts = 0;       // mirror particles of the whole body (as one process makes them)
   // Crack observables, when the scene asks for them.
   std::optional<pd::CrackSettings> crack;
   std::vector<pd::NamedLocation<D>> locations;
