@@ -40,6 +40,7 @@ class PdRun {
   void choose_time_step();
   void start_outputs();
   void history_row(std::int64_t step, double t);
+  void gather_bond_flags();
   void frame(std::int64_t step, double t);
   void maybe_frame(std::int64_t step, double t) {
     if (rec_.frame_due(step)) frame(step, t);
@@ -146,7 +147,8 @@ void PdRun<D>::start_outputs() {
   add_j_integral_columns(s_.j_integrals, cols);
   if (scene_.time.integrator == io::Integrator::adr) cols.insert(cols.end(), {"adr_iterations", "adr_residual"});
   if (s_.crack) {
-    crack_.emplace(s_.system, *s_.crack, s_.locations, s_.crack_exclude);
+    gather_bond_flags();
+    crack_.emplace(s_.crack_system(), *s_.crack, s_.locations, s_.crack_exclude);
     const auto more = crack_columns(*crack_);
     cols.insert(cols.end(), more.begin(), more.end());
   }
@@ -202,6 +204,20 @@ std::vector<core::JSample> PdRun<D>::j_samples(const Vec<2>& tip, double radius)
   }
 }
 
+// Distributed crack tracking: every process's bond flags, in rank order, are the whole
+// body's (own families hold the one-process bonds in the one-process order).
+template <int D>
+void PdRun<D>::gather_bond_flags() {
+  if (!s_.crack_body) return;
+  const auto& own = s_.system.bonds.flags.trial;
+  const std::vector<double> mine(own.begin(), own.begin() + s_.system.families.n_bonds());
+  const auto all = comm_->all_gather(mine);
+  auto& whole = s_.crack_body->bonds.flags;
+  if (static_cast<BondIndex>(all.size()) != s_.crack_body->families.n_bonds())
+    throw RunError("crack tracking: the processes' bonds do not make up the whole body's");
+  for (std::size_t b = 0; b < all.size(); ++b) whole.trial[b] = whole.committed[b] = static_cast<std::uint8_t>(all[b]);
+}
+
 template <int D>
 void PdRun<D>::history_row(std::int64_t step, double t) {
   std::vector<double> row{
@@ -240,7 +256,12 @@ void PdRun<D>::history_row(std::int64_t step, double t) {
     row.push_back(relax_.residual);
   }
   if (crack_) {
-    crack_->sample(s_.system, phi, t);
+    if (s_.crack_body) {
+      gather_bond_flags();
+      crack_->sample(*s_.crack_body, comm_->all_gather(phi), t);
+    } else {
+      crack_->sample(s_.system, phi, t);
+    }
     crack_values(*crack_, row);
   }
   rec_.write_history(row);
@@ -414,7 +435,7 @@ nlohmann::json PdRun<D>::summary() const {
     j["metrics"]["plastic_work"] = s_.model->plastic_work();
     j["metrics"]["max_eq_plastic_strain"] = largest(ep);
   }
-  if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, sys);
+  if (crack_) j["metrics"]["crack"] = crack_summary(*crack_, s_.crack_system());
   if (s_.ownership) j["halo_particles"] = everywhere(halo);
   if (s_.ownership && s_.contact) j["contact_pairs_across_processes"] = s_.contact->most_pairs_across_processes();
   if (s_.ownership && s_.symmetry_ghosts > 0) {

@@ -56,7 +56,6 @@ void check_distributable(const io::Scene& s) {
   // A distributed contact list holds the processes' own particles, not their mirrors.
   if (!s.symmetries.empty() && s.contact.enabled)
     refuse(s.symmetries.front().key, "a symmetry plane with short-range contact");
-  if (s.crack.enabled) refuse("crack", "crack tracking");
 }
 
 std::vector<bc::SymmetryPlane> symmetry_planes(const io::Scene& s) {
@@ -81,6 +80,26 @@ Index count_symmetry_ghosts(const io::Scene& s, const core::Particles<D>& body) 
   return whole.n_ghost();
 }
 
+// The scene's model settings on a system (its particles aside).
+template <int D>
+void set_model_settings(pd::System<D>& sys, const io::Scene& s) {
+  sys.setting = s.setting;
+  sys.material = s.material;
+  sys.delta = s.delta;
+  sys.measure = D == 3 ? 1.0 : s.measure;
+  sys.influence = s.influence;
+  sys.partial_volume = s.partial_volume;
+  sys.continuum_weighted_volume = s.continuum_weighted_volume;
+  if (pd::model_info(s.model).plastic) {
+    sys.hardening = s.hardening;
+    sys.ductile_failure = s.failure;
+  }
+  if (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2) sys.hardening = s.hardening;
+  sys.isotropic_deviatoric = s.isotropic_deviatoric;
+  sys.yield_on_live_bonds = s.yield_on_live_bonds;
+  sys.hpd = s.hpd;
+}
+
 }  // namespace
 
 template <int D>
@@ -100,6 +119,9 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
     out.symmetry_ghosts = count_symmetry_ghosts<D>(s, sys.particles);
     out.ownership.emplace();
     const Index n = sys.particles.n_real;
+    // Crack tracking follows connected components over the whole body: every process keeps
+    // the whole body's families, their flags gathered at each history sample (PdRun).
+    if (s.crack.enabled) out.crack_body.emplace().particles = sys.particles;
     sys.particles = dist::distribute<D>(*comm, sys.particles, pd::family_ratio(s.partial_volume, s.delta, s.spacing),
                                         *out.ownership);
     for (auto& probe : out.probes) {
@@ -109,21 +131,7 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
     }
   }
 
-  sys.setting = s.setting;
-  sys.material = s.material;
-  sys.delta = s.delta;
-  sys.measure = D == 3 ? 1.0 : s.measure;
-  sys.influence = s.influence;
-  sys.partial_volume = s.partial_volume;
-  sys.continuum_weighted_volume = s.continuum_weighted_volume;
-  if (pd::model_info(s.model).plastic) {
-    sys.hardening = s.hardening;
-    sys.ductile_failure = s.failure;
-  }
-  if (s.model == "hpd" && s.hpd.law == pd::HpdLaw::j2) sys.hardening = s.hardening;
-  sys.isotropic_deviatoric = s.isotropic_deviatoric;
-  sys.yield_on_live_bonds = s.yield_on_live_bonds;
-  sys.hpd = s.hpd;
+  set_model_settings(sys, s);
 
   if (!distributed) check_symmetry_planes<D>(s, sys.particles);
   bc::add_symmetry_ghosts<D>(sys.particles, symmetry_planes(s), family_reach(s));
@@ -199,13 +207,19 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
                                               s.contact.max_distance, s.contact.bonded_pairs},
                         c);
   }
+  if (out.crack_body) {
+    auto& whole = *out.crack_body;
+    set_model_settings(whole, s);
+    bc::add_symmetry_ghosts<D>(whole.particles, symmetry_planes(s), family_reach(s));
+    whole.connect();
+  }
   if (s.crack.enabled) {
     out.crack =
         pd::CrackSettings{s.crack.threshold, s.crack.path_threshold, s.crack.min_piece_fraction, s.crack.speed_window};
-    out.crack_exclude.assign(static_cast<std::size_t>(sys.particles.n_real), 0);
+    const auto& body = out.crack_system().particles;  // the whole body's particles
+    out.crack_exclude.assign(static_cast<std::size_t>(body.n_real), 0);
     if (!s.crack.exclude.empty()) {
-      const auto selected =
-          select_particles<D>(sys.particles.x0, sys.particles.n_real, make_geometry<D>(s.crack.exclude), s.spacing);
+      const auto selected = select_particles<D>(body.x0, body.n_real, make_geometry<D>(s.crack.exclude), s.spacing);
       if (selected.empty())
         throw InputError(s.file, "crack.exclude", "selects no particle (check the region against the body)");
       for (Index i : selected) out.crack_exclude[i] = 1;
@@ -215,8 +229,8 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
       loc.name = o.name;
       loc.point = to_vec<D>(o.point);
       loc.radius = o.radius > 0.0 ? o.radius : s.delta;
-      for (Index i = 0; i < sys.particles.n_real; ++i)
-        if ((sys.particles.x0[i] - loc.point).norm() <= loc.radius * (1.0 + 1e-12)) loc.particles.push_back(i);
+      for (Index i = 0; i < body.n_real; ++i)
+        if ((body.x0[i] - loc.point).norm() <= loc.radius * (1.0 + 1e-12)) loc.particles.push_back(i);
       if (loc.particles.empty())
         throw InputError(s.file, o.key + ".point",
                          "no particle lies within the radius of this point (is it inside the body?)");

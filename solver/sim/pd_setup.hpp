@@ -44,6 +44,10 @@ struct PdSetup {
   std::optional<pd::CrackSettings> crack;
   std::vector<pd::NamedLocation<D>> locations;
   std::vector<std::uint8_t> crack_exclude;  // per real particle: in a region excluded from crack detection
+  // A distributed run with crack observables: the whole body, its families' flags filled
+  // from every process's at each history sample (docs/models/distributed.md).
+  std::optional<pd::System<D>> crack_body;
+  pd::System<D>& crack_system() { return crack_body ? *crack_body : system; }
   // A distributed run: this process's particles in the whole body (its store holds
   // its own particles and their halo, solver/dist/).
   std::optional<dist::Ownership> ownership;

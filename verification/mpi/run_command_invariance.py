@@ -6,9 +6,9 @@ processes (oversubscribed on a small machine). history.csv and fields.xdmf must 
 equal byte for byte, every dataset and attribute of fields.h5 bit for bit, and
 summary.json equal in every key but the machine's (wall times, rates, memory,
 processes, halo, ghosts). A run stopped after a step with periodic checkpoints and
-resumed under mpirun must write the same outputs (a PD and an MPM scene), and a resume
+resumed under mpirun must write the same outputs (PD, MPM and contact scenes), and a resume
 with another process count is refused. Then what a distributed run refuses: a hybrid
-scene, an output directory it cannot write — each with the exit status of one process,
+scene, symmetry planes with contact, an output directory it cannot write — each with the exit status of one process,
 one message, nothing written, and no process left waiting.
 
 Writes one gate per scene and one for the refusals, and a table, into RESULTS_DIR
@@ -36,6 +36,12 @@ TIMEOUT_S = 300  # a process left waiting for another would hang: fail instead
 # The scenes also stopped after step 250 and resumed (their models keep the most state;
 # the disk strike: the contact list and its ghosts).
 RESUMED = {"lps_plastic_notched_2d", "mpm_notched_2d", "pmb_disk_strikes_plate_2d"}
+
+# What a scene is for beyond broken bonds: summary keys of its distributed run that must be
+# positive (contact pairs joining two processes' particles, mirrors of halo particles).
+EXERCISES = {"pmb_disk_strikes_plate_2d": ["contact_pairs_across_processes"],
+             "lps_quarter_hole_symmetry_2d": ["mirrors_of_halo_particles"],
+             "pmb_octant_symmetry_3d": ["mirrors_of_halo_particles"]}
 
 failures = []
 rows = []
@@ -128,12 +134,12 @@ def invariance(pdmpm, processes, scene, work, results):
         differ += not check(many.get("ghost_points", 0) > 0, f"{scene.stem}: {many.get('ghost_points')} ghost points")
     else:
         differ += not check(broken > 0, f"{scene.stem}: {broken} bonds broke")
-    if "contact_pairs_across_processes" in many:
-        across = many["contact_pairs_across_processes"]
-        differ += not check(across > 0, f"{scene.stem}: up to {across} contact pairs joined two processes' particles")
-    if "mirrors_of_halo_particles" in many:
-        mirrors = many["mirrors_of_halo_particles"]
-        differ += not check(mirrors > 0, f"{scene.stem}: {mirrors} mirror particles of other processes' particles")
+    for key in EXERCISES.get(scene.stem, []):
+        differ += not check(many.get(key, 0) > 0, f"{scene.stem}: {key} = {many.get(key)} (> 0)")
+    if "crack" in metrics:
+        cracks = metrics["crack"].get("cracks", [])
+        extent = max((c["extent"] for c in cracks), default=0)
+        differ += not check(extent > 0, f"{scene.stem}: a crack tracked to an extent of {extent:.4g} m")
     write_gate(results, f"distributed.run_command.{scene.stem}.{processes}", claim(scene, processes), differ, REASON)
     rows.append([one["scene"], one["model"], one["dimension"], processes, one["particles"],
                  many.get("halo_particles", many.get("ghost_points", 0)), one["steps"], broken,
@@ -188,9 +194,15 @@ def refusals(pdmpm, processes, scenes_dir, work, results):
     pd_scene = scenes_dir / "lps_plate_crack_2d.toml"
     blocked = work / "a_file"
     blocked.write_text("not a directory\n")
+    # Contact with a symmetry plane: a distributed contact list holds no mirrors.
+    mirrored_contact = work / "mirrored_contact.toml"
+    mirrored_contact.write_text((scenes_dir / "pmb_disk_strikes_plate_2d.toml").read_text()
+                                + '\n[[symmetry]]\naxis = "x"\nposition = 0.0\n')
     # (what, command, exit status as one process exits, message fragment, output that must not exist)
     cases = [("a hybrid scene", [pdmpm, "run", str(hybrid), "--out", str(work / "hybrid")], 2, "'hybrid'",
               work / "hybrid"),
+             ("symmetry planes with contact", [pdmpm, "run", str(mirrored_contact), "--out", str(work / "mc")], 2,
+              "with short-range contact", work / "mc"),
              ("an output directory inside a file", [pdmpm, "run", str(pd_scene), "--out", str(blocked / "out")],
               3, "cannot create output directory", None)]
     for what, command, status, fragment, out in cases:
@@ -201,7 +213,8 @@ def refusals(pdmpm, processes, scenes_dir, work, results):
                            f"{what} under {processes} processes: status {r.returncode} ({status}), one message, "
                            "nothing written" + ("" if ok else f"\n{r.stderr}"))
     write_gate(results, f"distributed.run_command.refusals.{processes}",
-               f"Under mpirun -n {processes}, a hybrid scene and an output directory that cannot be made shall each "
+               f"Under mpirun -n {processes}, a hybrid scene, symmetry planes with contact and an output directory that "
+               "cannot be made shall each "
                "stop every process with the one-process exit status, one message and nothing "
                "written (cases that do not)", wrong,
                "Each case either behaves or not; a process left waiting would time out the test.")
