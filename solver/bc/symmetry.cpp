@@ -20,19 +20,19 @@ std::int32_t reach_in_sites(double reach, double dx) {
 
 // Twice the plane's site coordinate (an integer for a checked plane).
 template <int D>
-double twice_site(const core::Particles<D>& p, const SymmetryPlane& plane) {
-  return 2.0 * (plane.position - p.lattice.origin[plane.axis]) / p.lattice.spacing;
+double twice_site(const core::Lattice<D>& lattice, const SymmetryPlane& plane) {
+  return 2.0 * (plane.position - lattice.origin[plane.axis]) / lattice.spacing;
 }
 
 }  // namespace
 
 template <int D>
-void check_symmetry_planes(const core::Particles<D>& body, const std::vector<SymmetryPlane>& planes, double reach,
-                           const std::string& file) {
-  const double dx = body.lattice.spacing;
+void check_symmetry_planes(const core::Lattice<D>& lattice, const IVec<D>& lowest, const IVec<D>& highest,
+                           const std::vector<SymmetryPlane>& planes, double reach, const std::string& file) {
+  const double dx = lattice.spacing;
   for (const auto& plane : planes) {
     const int a = plane.axis;
-    const double twice = twice_site(body, plane);
+    const double twice = twice_site(lattice, plane);
     const double rounded = std::round(twice);
     if (std::abs(twice - rounded) > 1e-6)
       throw InputError(file, plane.key + ".position",
@@ -41,24 +41,14 @@ void check_symmetry_planes(const core::Particles<D>& body, const std::vector<Sym
     // The plane must touch the body (within the family reach of a particle): one
     // farther away mirrors nothing, and its site coordinate may not fit an integer.
     const auto reach_sites = reach_in_sites(reach, dx);
-    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-    for (Index i = 0; i < body.n_real; ++i) {
-      lo = std::min<double>(lo, body.site[i][a]);
-      hi = std::max<double>(hi, body.site[i][a]);
-    }
+    const double lo = lowest[a], hi = highest[a];
     if (!(rounded >= 2.0 * (lo - reach_sites) && rounded <= 2.0 * (hi + reach_sites)))
       throw InputError(file, plane.key + ".position",
                        fmt::format("the plane at {} m lies beyond the body's reach; a symmetry plane must touch the "
                                    "body (between {} and {} m on this axis)",
-                                   plane.position, body.lattice.origin[a] + (lo - reach_sites) * dx,
-                                   body.lattice.origin[a] + (hi + reach_sites) * dx));
-    const auto two_p = static_cast<std::int32_t>(rounded);
-    bool below = false, above = false;
-    for (Index i = 0; i < body.n_real; ++i) {
-      below = below || 2 * body.site[i][a] < two_p;
-      above = above || 2 * body.site[i][a] > two_p;
-    }
-    if (below && above)
+                                   plane.position, lattice.origin[a] + (lo - reach_sites) * dx,
+                                   lattice.origin[a] + (hi + reach_sites) * dx));
+    if (2.0 * lo < rounded && 2.0 * hi > rounded)
       throw InputError(file, plane.key, "the body lies on both sides of this symmetry plane; keep only one half");
   }
 }
@@ -68,7 +58,7 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
   const auto reach_sites = reach_in_sites(reach, p.lattice.spacing);
   for (const auto& plane : planes) {
     const int a = plane.axis;
-    const auto two_p = static_cast<std::int32_t>(std::round(twice_site(p, plane)));
+    const auto two_p = static_cast<std::int32_t>(std::round(twice_site(p.lattice, plane)));
     std::set<std::vector<std::int32_t>> occupied;
     for (const auto& s : p.site) occupied.insert(std::vector<std::int32_t>(s.data(), s.data() + D));
     const Index existing = p.size();
@@ -93,12 +83,12 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
   }
 }
 
-template void check_symmetry_planes<1>(const core::Particles<1>&, const std::vector<SymmetryPlane>&, double,
-                                       const std::string&);
-template void check_symmetry_planes<2>(const core::Particles<2>&, const std::vector<SymmetryPlane>&, double,
-                                       const std::string&);
-template void check_symmetry_planes<3>(const core::Particles<3>&, const std::vector<SymmetryPlane>&, double,
-                                       const std::string&);
+template void check_symmetry_planes<1>(const core::Lattice<1>&, const IVec<1>&, const IVec<1>&,
+                                       const std::vector<SymmetryPlane>&, double, const std::string&);
+template void check_symmetry_planes<2>(const core::Lattice<2>&, const IVec<2>&, const IVec<2>&,
+                                       const std::vector<SymmetryPlane>&, double, const std::string&);
+template void check_symmetry_planes<3>(const core::Lattice<3>&, const IVec<3>&, const IVec<3>&,
+                                       const std::vector<SymmetryPlane>&, double, const std::string&);
 template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double);
 template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double);
 template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double);

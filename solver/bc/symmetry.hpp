@@ -17,11 +17,11 @@ struct SymmetryPlane {
 };
 
 // Throws InputError when a plane is off the lattice, beyond the body's reach or has the
-// body on both sides. `body` holds the whole body's real particles; `reach` is the family
-// radius in metres.
+// body on both sides. The body's sites span [lowest, highest] (per axis, the whole body's);
+// `reach` is the family radius in metres.
 template <int D>
-void check_symmetry_planes(const core::Particles<D>& body, const std::vector<SymmetryPlane>& planes, double reach,
-                           const std::string& file);
+void check_symmetry_planes(const core::Lattice<D>& lattice, const IVec<D>& lowest, const IVec<D>& highest,
+                           const std::vector<SymmetryPlane>& planes, double reach, const std::string& file);
 
 // Appends the ghosts of all checked planes (and of their intersections) to p: a mirror of
 // every particle of p (real or ghost) within `reach` of a plane whose site is free. In a
@@ -35,7 +35,9 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
 template <int D>
 void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach,
                          const std::string& file) {
-  check_symmetry_planes(p, planes, reach, file);
+  IVec<D> lowest = p.site[0], highest = p.site[0];
+  for (Index i = 0; i < p.n_real; ++i) lowest = lowest.cwiseMin(p.site[i]), highest = highest.cwiseMax(p.site[i]);
+  if (p.n_real > 0) check_symmetry_planes(p.lattice, lowest, highest, planes, reach, file);
   add_symmetry_ghosts(p, planes, reach);
 }
 

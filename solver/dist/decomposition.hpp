@@ -9,6 +9,7 @@
 // one-process run (families are built by lattice offsets, core/families.hpp).
 #include <vector>
 
+#include "solver/core/body_sites.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/core/stencil.hpp"
 
@@ -26,14 +27,9 @@ OwnedRange owned_range(Index n, int rank, int ranks);
 // The process that owns global index g (the inverse of owned_range).
 int owner_rank(Index g, Index n, int ranks);
 
-// Global indices, increasing, of the particles outside `own` that are a stencil
-// neighbour of a particle in it. The body must have no ghosts.
+// Global indices, increasing, of the sites outside `own` that are a stencil neighbour
+// of a site in it.
 template <int D>
-std::vector<Index> halo_of(const core::Particles<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
-
-// The process's store: its own particles as the real ones (in global order), then
-// the halo as remote ghosts (in global order). Fields are copied from the body.
-template <int D>
-core::Particles<D> local_store(const core::Particles<D>& body, OwnedRange own, const std::vector<Index>& halo);
+std::vector<Index> halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
 
 }  // namespace pdmpm::dist

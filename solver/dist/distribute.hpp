@@ -1,9 +1,9 @@
 #pragma once
-// Splits a body between the processes of a run: each keeps its own particles and
-// its halo (solver/dist/decomposition.hpp), the halo kept current by messages
-// (solver/dist/halo_exchange.hpp). Every process builds the whole body's
-// particles first (positions only; families and bonds, the bulk of the memory,
-// are built for its own particles alone).
+// Splits a body between the processes of a run: each makes particles for its own
+// sites and its halo only (solver/dist/decomposition.hpp), the halo kept current by
+// messages (solver/dist/halo_exchange.hpp). Every process keeps the whole body's sites
+// as sorted Morton keys (core/body_sites.hpp, 8 bytes a site); families and bonds are
+// built for its own particles alone.
 #include <memory>
 #include <vector>
 
@@ -24,11 +24,10 @@ struct Ownership {
   std::shared_ptr<HaloExchange> exchange;  // the store's `remote`
 };
 
-// This process's store of `body` (which must have no ghosts), with the halo every
-// bond of a family of `family_ratio` lattice spacings needs; the exchange is set
-// as the store's `remote`.
+// This process's store of `body`, with the halo every bond of a family of
+// `family_ratio` lattice spacings needs; the exchange is set as the store's `remote`.
 template <int D>
-core::Particles<D> distribute(const Communicator& comm, const core::Particles<D>& body, double family_ratio,
+core::Particles<D> distribute(const Communicator& comm, const core::BodySites<D>& body, double family_ratio,
                               Ownership& ownership);
 
 }  // namespace pdmpm::dist

@@ -6,12 +6,11 @@
 #include <limits>
 
 #include "solver/core/error.hpp"
-#include "solver/core/particle_builder.hpp"
 
 namespace pdmpm::sim {
 
 template <int D>
-core::Particles<D> fill_body(const io::Scene& s) {
+core::BodySites<D> body_sites_of(const io::Scene& s) {
   const auto geometry = make_geometry<D>(s.shapes);
   // Particles are indexed by 32-bit integers (families store them per bond): a
   // lattice that could hold more is refused before it is filled site by site.
@@ -24,11 +23,17 @@ core::Particles<D> fill_body(const io::Scene& s) {
                                  "particles with 32-bit integers (at most {}): use a larger spacing",
                                  s.spacing, sites, std::numeric_limits<Index>::max()));
   const double volume = std::pow(s.spacing, D) * (D == 3 ? 1.0 : s.measure);
-  auto particles = core::fill_lattice<D>(geometry, make_lattice<D>(s, geometry), volume);
-  if (particles.n_real == 0)
+  auto body = core::body_sites<D>(geometry, make_lattice<D>(s, geometry), volume);
+  if (body.size() == 0)
     throw InputError(s.file, "shape",
                      "the shapes contain no lattice site: check their extents against discretization.spacing");
-  return particles;
+  return body;
+}
+
+template <int D>
+core::Particles<D> fill_body(const io::Scene& s) {
+  const auto body = body_sites_of<D>(s);
+  return body.particles(0, body.size());
 }
 
 template <int D>
@@ -75,6 +80,9 @@ template core::Geometry<2> make_geometry<2>(const std::vector<io::ShapeSpec>&);
 template core::Geometry<3> make_geometry<3>(const std::vector<io::ShapeSpec>&);
 template std::vector<Index> select_particles<1>(const std::vector<Vec<1>>&, Index, const core::Geometry<1>&, double);
 template std::vector<Index> select_particles<2>(const std::vector<Vec<2>>&, Index, const core::Geometry<2>&, double);
+template core::BodySites<1> body_sites_of<1>(const io::Scene&);
+template core::BodySites<2> body_sites_of<2>(const io::Scene&);
+template core::BodySites<3> body_sites_of<3>(const io::Scene&);
 template core::Particles<1> fill_body<1>(const io::Scene&);
 template core::Particles<2> fill_body<2>(const io::Scene&);
 template core::Particles<3> fill_body<3>(const io::Scene&);

@@ -2,6 +2,7 @@
 // Turns scene shape specifications into core geometry.
 #include <vector>
 
+#include "solver/core/body_sites.hpp"
 #include "solver/core/lattice.hpp"
 #include "solver/core/particles.hpp"
 #include "solver/core/shapes.hpp"
@@ -18,8 +19,12 @@ core::Geometry<D> make_geometry(const std::vector<io::ShapeSpec>& shapes);
 template <int D>
 core::Lattice<D> make_lattice(const io::Scene& s, const core::Geometry<D>& g);
 
-// The body's particles: the scene's lattice sites inside its shapes, of volume
+// The body's sites: the scene's lattice sites inside its shapes, particles of volume
 // Δx^D (× thickness in 2D, × area in 1D). InputError when there is none.
+template <int D>
+core::BodySites<D> body_sites_of(const io::Scene& s);
+
+// The body's particles (its sites', all).
 template <int D>
 core::Particles<D> fill_body(const io::Scene& s);
 

@@ -5,7 +5,8 @@
 namespace pdmpm::sim {
 
 template <int D>
-std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real) {
+std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real,
+                                                const dist::Communicator* comm) {
   std::vector<JIntegralOutput> out;
   if constexpr (D == 2) {
     for (const io::JIntegralSpec& spec : s.j_integrals) {
@@ -20,6 +21,7 @@ std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::v
         const double r = (x0[i] - j.domain.tip).norm();
         if (r > spec.r_inner && r < spec.r_outer) ++in_ring;
       }
+      if (comm) in_ring = static_cast<Index>(comm->sum(in_ring));
       if (in_ring == 0)
         throw InputError(s.file, spec.key + ".r_outer",
                          "no particle lies in the ring r_inner < |x − tip| < r_outer (is the tip inside the body, the "
@@ -27,7 +29,7 @@ std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::v
       out.push_back(j);
     }
   } else {
-    (void)s, (void)x0, (void)n_real;
+    (void)s, (void)x0, (void)n_real, (void)comm;
   }
   return out;
 }
@@ -55,8 +57,11 @@ std::vector<core::JSample> gather_j_samples(std::vector<core::JSample> samples, 
   return samples;
 }
 
-template std::vector<JIntegralOutput> j_integral_outputs<1>(const io::Scene&, const std::vector<Vec<1>>&, Index);
-template std::vector<JIntegralOutput> j_integral_outputs<2>(const io::Scene&, const std::vector<Vec<2>>&, Index);
-template std::vector<JIntegralOutput> j_integral_outputs<3>(const io::Scene&, const std::vector<Vec<3>>&, Index);
+template std::vector<JIntegralOutput> j_integral_outputs<1>(const io::Scene&, const std::vector<Vec<1>>&, Index,
+                                                            const dist::Communicator*);
+template std::vector<JIntegralOutput> j_integral_outputs<2>(const io::Scene&, const std::vector<Vec<2>>&, Index,
+                                                            const dist::Communicator*);
+template std::vector<JIntegralOutput> j_integral_outputs<3>(const io::Scene&, const std::vector<Vec<3>>&, Index,
+                                                            const dist::Communicator*);
 
 }  // namespace pdmpm::sim

@@ -18,9 +18,10 @@ struct JIntegralOutput {
 };
 
 // The scene's J-integrals (2D; none otherwise). Throws InputError(j_integral[k].r_outer) if no
-// real particle lies in a ring.
+// real particle lies in a ring (of any process's, with `comm`).
 template <int D>
-std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real);
+std::vector<JIntegralOutput> j_integral_outputs(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real,
+                                                const dist::Communicator* comm = nullptr);
 
 inline void add_j_integral_columns(const std::vector<JIntegralOutput>& js, std::vector<std::string>& columns) {
   for (const auto& j : js) columns.push_back("j_" + j.name);

@@ -167,25 +167,24 @@ MpmGridSettings<D> translate_mpm(const io::Scene& s) {
 template <int D>
 MpmSetup<D> build_mpm(const io::Scene& s, const dist::Communicator* comm) {
   MpmSetup<D> out;
-  out.particles = fill_body<D>(s);
-  for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
-  out.global_count = out.particles.n_real;
-  // Probes and J-integral rings are placed in the whole body (before it is distributed).
-  out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
-  out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real);
   if (comm && comm->size() > 1) {
-    // Material points never change owner: each process keeps a contiguous range of the
-    // global (Morton) order; its ghosts are found afresh every step (mpm/other_processes.hpp).
-    const Index n = out.particles.n_real;
-    const dist::OwnedRange own = dist::owned_range(n, comm->rank(), comm->size());
-    out.particles = dist::local_store<D>(out.particles, own, {});
+    // Material points never change owner: each process makes and keeps a contiguous range
+    // of the global (Morton) order; its ghosts are found afresh every step
+    // (mpm/other_processes.hpp). Probes and J-integral rings are placed in the whole body.
+    const auto body = body_sites_of<D>(s);
+    out.global_count = body.size();
+    const dist::OwnedRange own = dist::owned_range(body.size(), comm->rank(), comm->size());
+    out.particles = body.particles(own.begin, own.end);
     out.others = std::make_shared<dist::ParticleShare>(*comm, own);
-    for (auto& probe : out.probes) {
-      const Index g = probe.particle;
-      probe.owner = dist::owner_rank(g, n, comm->size());
-      probe.particle = own.contains(g) ? g - own.begin : -1;
-    }
+    out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real, comm, own, body.size());
+    out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real, comm);
+  } else {
+    out.particles = fill_body<D>(s);
+    out.global_count = out.particles.n_real;
+    out.probes = locate_probes<D>(s, out.particles.x0, out.particles.n_real);
+    out.j_integrals = j_integral_outputs<D>(s, out.particles.x0, out.particles.n_real);
   }
+  for (auto& k : out.particles.kind) k = core::ParticleKind::mpm;
   // Before the simulation exists: its grid covers the displaced body and its first
   // stable step sees the initial velocities.
   out.initial = make_initial_conditions<D>(s, out.particles, out.others ? comm : nullptr);

@@ -66,18 +66,43 @@ std::vector<bc::SymmetryPlane> symmetry_planes(const io::Scene& s) {
 
 double family_reach(const io::Scene& s) { return pd::family_ratio(s.partial_volume, s.delta, s.spacing) * s.spacing; }
 
+// The planes against the whole body's sites: their bounds over every process's own.
 template <int D>
-void check_symmetry_planes(const io::Scene& s, const core::Particles<D>& body) {
-  bc::check_symmetry_planes<D>(body, symmetry_planes(s), family_reach(s), s.file);
+void check_symmetry_planes(const io::Scene& s, const core::Particles<D>& p, const dist::Communicator* comm) {
+  if (s.symmetries.empty()) return;
+  Vec<D> lo = Vec<D>::Constant(1e300), hi = Vec<D>::Constant(-1e300);
+  for (Index i = 0; i < p.n_real; ++i)
+    for (int a = 0; a < D; ++a)
+      lo[a] = std::min<double>(lo[a], p.site[i][a]), hi[a] = std::max<double>(hi[a], p.site[i][a]);
+  if (comm)
+    for (int a = 0; a < D; ++a) lo[a] = comm->min(lo[a]), hi[a] = comm->max(hi[a]);
+  bc::check_symmetry_planes<D>(p.lattice, lo.template cast<std::int32_t>(), hi.template cast<std::int32_t>(),
+                               symmetry_planes(s), family_reach(s), s.file);
 }
 
-// The mirrors one process makes for the whole body (a distributed run's summary reports them).
+// The mirrors one process makes for the whole body (a distributed run's summary reports
+// them): those of the sites within a family's reach of a plane — no other site is mirrored,
+// and a mirror lands beyond its plane, where the body has no site.
 template <int D>
-Index count_symmetry_ghosts(const io::Scene& s, const core::Particles<D>& body) {
-  if (s.symmetries.empty()) return 0;
-  auto whole = body;
-  bc::add_symmetry_ghosts<D>(whole, symmetry_planes(s), family_reach(s));
-  return whole.n_ghost();
+Index count_symmetry_ghosts(const io::Scene& s, const core::BodySites<D>& body) {
+  const auto planes = symmetry_planes(s);
+  if (planes.empty()) return 0;
+  const double reach = family_reach(s), dx = body.lattice.spacing;
+  const double reach_twice = 2.0 * std::floor(reach / dx * (1.0 + 1e-10));
+  core::Particles<D> near;
+  near.lattice = body.lattice;
+  for (Index g = 0; g < body.size(); ++g) {
+    const IVec<D> site = body.site(g);
+    for (const auto& plane : planes)
+      if (std::abs(2.0 * site[plane.axis] -
+                   std::round(2.0 * (plane.position - body.lattice.origin[plane.axis]) / dx)) <= reach_twice) {
+        near.push_back(site, body.volume);
+        break;
+      }
+  }
+  near.n_real = near.size();
+  bc::add_symmetry_ghosts<D>(near, planes, reach);
+  return near.n_ghost();
 }
 
 // The scene's model settings on a system (its particles aside).
@@ -106,34 +131,38 @@ template <int D>
 PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   PdSetup<D> out;
   auto& sys = out.system;
-  sys.particles = fill_body<D>(s);
-  // Probes and J-integral rings are placed in the whole body (before it is distributed).
-  out.probes = locate_probes<D>(s, sys.particles.x0, sys.particles.n_real);
-  out.j_integrals = j_integral_outputs<D>(s, sys.particles.x0, sys.particles.n_real);
   const bool distributed = comm && comm->size() > 1;
   // Counts over the whole body, for the checks that a region or pre-crack acts somewhere.
   const auto everywhere = [&](std::int64_t local) { return distributed ? comm->sum(local) : local; };
+  // Probes and J-integral rings are placed in the whole body; symmetry planes checked against it.
   if (distributed) {
     check_distributable(s);
-    check_symmetry_planes<D>(s, sys.particles);  // on the whole body; the mirrors are made per process below
-    out.symmetry_ghosts = count_symmetry_ghosts<D>(s, sys.particles);
+    // Every process keeps the whole body as site keys and makes particles for its own
+    // sites and their halo only (docs/models/distributed.md).
+    const auto body = body_sites_of<D>(s);
     out.ownership.emplace();
-    const Index n = sys.particles.n_real;
+    sys.particles =
+        dist::distribute<D>(*comm, body, pd::family_ratio(s.partial_volume, s.delta, s.spacing), *out.ownership);
+    const auto& p = sys.particles;
+    out.probes = locate_probes<D>(s, p.x0, p.n_real, comm, out.ownership->own, body.size());
+    out.j_integrals = j_integral_outputs<D>(s, p.x0, p.n_real, comm);
+    check_symmetry_planes<D>(s, p, comm);
+    out.symmetry_ghosts = count_symmetry_ghosts<D>(s, body);
     // Crack tracking follows connected components over the whole body: every process keeps
     // the whole body's families, their flags gathered at each history sample (PdRun).
-    if (s.crack.enabled) out.crack_body.emplace().particles = sys.particles;
-    sys.particles = dist::distribute<D>(*comm, sys.particles, pd::family_ratio(s.partial_volume, s.delta, s.spacing),
-                                        *out.ownership);
-    for (auto& probe : out.probes) {
-      const Index g = probe.particle;
-      probe.owner = dist::owner_rank(g, n, comm->size());
-      probe.particle = out.ownership->own.contains(g) ? g - out.ownership->own.begin : -1;
-    }
+    if (s.crack.enabled) out.crack_body.emplace().particles = body.particles(0, body.size());
+  } else {
+    sys.particles = fill_body<D>(s);
+    const auto& p = sys.particles;
+    out.probes = locate_probes<D>(s, p.x0, p.n_real);
+    out.j_integrals = j_integral_outputs<D>(s, p.x0, p.n_real);
+    check_symmetry_planes<D>(s, p, nullptr);
   }
 
   set_model_settings(sys, s);
 
-  if (!distributed) check_symmetry_planes<D>(s, sys.particles);
+  // The mirrors of the symmetry planes: a distributed process makes those of its own
+  // particles and halo (bc/symmetry.hpp).
   bc::add_symmetry_ghosts<D>(sys.particles, symmetry_planes(s), family_reach(s));
   if (!distributed) out.symmetry_ghosts = sys.particles.n_ghost();
   sys.connect();

@@ -6,6 +6,7 @@
 
 #include "solver/core/types.hpp"
 #include "solver/dist/communicator.hpp"
+#include "solver/dist/decomposition.hpp"
 #include "solver/io/scene.hpp"
 #include "solver/sim/run_metrics.hpp"
 
@@ -18,8 +19,11 @@ struct Probe {
 };
 
 // Throws InputError(probe[k].point) if no real particle lies within √D Δx of a point.
+// Distributed (`comm`, this process owning `own` of a body of `n_body` particles): the
+// nearest particle of every process's, the lowest global index on a tie, as in one process.
 template <int D>
-std::vector<Probe> locate_probes(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real);
+std::vector<Probe> locate_probes(const io::Scene& s, const std::vector<Vec<D>>& x0, Index n_real,
+                                 const dist::Communicator* comm = nullptr, dist::OwnedRange own = {}, Index n_body = 0);
 
 // history.csv columns of the probes: probe_<name>_u<x…>, then _v<x…>, per probe.
 template <int D>

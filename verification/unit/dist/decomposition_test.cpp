@@ -6,19 +6,18 @@
 #include <set>
 
 #include "solver/core/families.hpp"
-#include "solver/core/particle_builder.hpp"
 #include "solver/core/shapes.hpp"
 
 namespace pdmpm::dist {
 namespace {
 
-core::Particles<2> plate() {
+core::BodySites<2> plate() {
   core::Geometry<2> g;
   g.add(std::make_unique<core::Box<2>>(Vec<2>(0.0, 0.0), Vec<2>(0.030, 0.017)));
   core::Lattice<2> lat;
   lat.spacing = 1e-3;
   lat.origin = Vec<2>(5e-4, 5e-4);
-  return core::fill_lattice<2>(g, lat, 1e-6);
+  return core::body_sites<2>(g, lat, 1e-6);
 }
 
 TEST(Decomposition, RangesCoverTheBodyOnceAndOwnerRankInvertsThem) {
@@ -37,10 +36,11 @@ TEST(Decomposition, RangesCoverTheBodyOnceAndOwnerRankInvertsThem) {
 }
 
 TEST(Decomposition, HaloIsExactlyTheOtherProcessesStencilNeighbours) {
-  const auto body = plate();
+  const auto sites = plate();
+  const auto body = sites.particles(0, sites.size());
   const auto stencil = core::Stencil<2>::build(3.015);
   const auto own = owned_range(body.n_real, 1, 3);
-  const auto halo = halo_of(body, stencil, own);
+  const auto halo = halo_of(sites, stencil, own);
   std::set<Index> expected;
   for (Index i = own.begin; i < own.end; ++i)
     for (Index j = 0; j < body.n_real; ++j)
@@ -50,12 +50,12 @@ TEST(Decomposition, HaloIsExactlyTheOtherProcessesStencilNeighbours) {
 }
 
 TEST(Decomposition, LocalFamiliesAreTheWholeBodysInTheSameOrder) {
-  const auto body = plate();
-  const auto whole = core::Families<2>::build(body, 3.015);
+  const auto sites = plate();
+  const auto whole = core::Families<2>::build(sites.particles(0, sites.size()), 3.015);
   for (int r = 0; r < 3; ++r) {
-    const auto own = owned_range(body.n_real, r, 3);
-    const auto halo = halo_of(body, whole.stencil, own);
-    const auto local = local_store(body, own, halo);
+    const auto own = owned_range(sites.size(), r, 3);
+    const auto halo = halo_of(sites, whole.stencil, own);
+    const auto local = sites.particles(own.begin, own.end, halo);
     ASSERT_EQ(local.n_real, own.size());
     ASSERT_EQ(local.n_ghost(), static_cast<Index>(halo.size()));
     for (Index g = 0; g < local.n_ghost(); ++g) EXPECT_EQ(local.ghost_owner[g], core::Particles<2>::kRemoteOwner);
@@ -70,14 +70,6 @@ TEST(Decomposition, LocalFamiliesAreTheWholeBodysInTheSameOrder) {
       }
     }
   }
-}
-
-TEST(Decomposition, RefusesABodyWithMirrorGhosts) {
-  auto body = plate();
-  body.push_back(IVec<2>(-1, 0), 1e-6);
-  body.ghost_owner.push_back(0);
-  body.ghost_sign.push_back(Vec<2>(-1.0, 1.0));
-  EXPECT_THROW(halo_of(body, core::Stencil<2>::build(3.015), owned_range(body.n_real, 0, 2)), std::invalid_argument);
 }
 
 }  // namespace
