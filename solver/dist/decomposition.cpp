@@ -34,8 +34,22 @@ std::vector<Index> halo_of(const core::BodySites<D>& body, const core::Stencil<D
   return halo;
 }
 
+template <int D>
+std::int64_t whole_body_bonds(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own) {
+  std::int64_t bonds = 0;
+  for (Index i = own.begin; i < own.end; ++i) {
+    const IVec<D> site = body.site(i);
+    for (const auto& off : stencil.offset) bonds += body.find(site + off) >= 0;
+  }
+  return bonds;
+}
+
 template std::vector<Index> halo_of<1>(const core::BodySites<1>&, const core::Stencil<1>&, OwnedRange);
 template std::vector<Index> halo_of<2>(const core::BodySites<2>&, const core::Stencil<2>&, OwnedRange);
 template std::vector<Index> halo_of<3>(const core::BodySites<3>&, const core::Stencil<3>&, OwnedRange);
+
+template std::int64_t whole_body_bonds<1>(const core::BodySites<1>&, const core::Stencil<1>&, OwnedRange);
+template std::int64_t whole_body_bonds<2>(const core::BodySites<2>&, const core::Stencil<2>&, OwnedRange);
+template std::int64_t whole_body_bonds<3>(const core::BodySites<3>&, const core::Stencil<3>&, OwnedRange);
 
 }  // namespace pdmpm::dist

@@ -32,4 +32,9 @@ int owner_rank(Index g, Index n, int ranks);
 template <int D>
 std::vector<Index> halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
 
+// The bonds `own`'s particles have in the whole body: their stencil neighbours, counted
+// apart from the halo, so that a store missing one of them is found (a halo too thin).
+template <int D>
+std::int64_t whole_body_bonds(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
+
 }  // namespace pdmpm::dist

@@ -19,6 +19,7 @@ struct Ownership {
   Index global_count = 0;                  // real particles of the whole body
   OwnedRange own;                          // its own particles' global indices
   std::vector<Index> halo;                 // its remote ghosts' global indices, in store order
+  std::int64_t whole_body_bonds = 0;       // its own particles' bonds in the whole body
   std::int64_t values_sent = 0;            // values it sends per exchanged scalar
   int neighbours = 0;                      // processes it exchanges with
   std::shared_ptr<HaloExchange> exchange;  // the store's `remote`

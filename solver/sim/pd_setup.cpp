@@ -105,6 +105,20 @@ Index count_symmetry_ghosts(const io::Scene& s, const core::BodySites<D>& body) 
   return near.n_ghost();
 }
 
+// A halo too thin would leave bonds out of families without a trace: the bonds of every
+// process's own particles to real particles and the halo (not to mirrors) must be those
+// their sites have in the whole body. A failure is a bug, reported by every process alike.
+template <int D>
+void check_families_whole(const pd::System<D>& sys, const dist::Ownership& ownership, const dist::Communicator& comm) {
+  const Index held_ghosts = sys.particles.n_real + static_cast<Index>(ownership.halo.size());
+  std::int64_t held = 0;
+  for (BondIndex b = 0; b < sys.families.n_bonds(); ++b) held += sys.families.neighbor[b] < held_ghosts;
+  const std::int64_t missing = comm.sum(ownership.whole_body_bonds - held);
+  if (missing != 0)
+    throw RunError("the processes' families hold " + std::to_string(missing) +
+                   " bonds fewer than the whole body's (a halo too thin: a bug, please report it)");
+}
+
 // The scene's model settings on a system (its particles aside).
 template <int D>
 void set_model_settings(pd::System<D>& sys, const io::Scene& s) {
@@ -166,7 +180,10 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
   bc::add_symmetry_ghosts<D>(sys.particles, symmetry_planes(s), family_reach(s));
   if (!distributed) out.symmetry_ghosts = sys.particles.n_ghost();
   sys.connect();
-  if (out.ownership) out.ownership->exchange->index_bond_sides(sys.families.offsets, sys.families.neighbor);
+  if (out.ownership) {
+    check_families_whole<D>(sys, *out.ownership, *comm);
+    out.ownership->exchange->index_bond_sides(sys.families.offsets, sys.families.neighbor);
+  }
 
   for (const auto& pc : s.precracks) {
     pd::CrackSurface<D> crack;
