@@ -83,6 +83,24 @@ void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>
   }
 }
 
+template <int D>
+Index mirror_count(const core::BodySites<D>& body, const std::vector<SymmetryPlane>& planes, double reach) {
+  if (planes.empty()) return 0;
+  const auto reach_sites = reach_in_sites(reach, body.lattice.spacing);
+  core::Particles<D> near;
+  near.lattice = body.lattice;
+  for (Index g = 0; g < body.size(); ++g) {
+    const IVec<D> site = body.site(g);
+    const auto within = [&](const SymmetryPlane& plane) {
+      return std::abs(2.0 * site[plane.axis] - std::round(twice_site(body.lattice, plane))) <= 2.0 * reach_sites;
+    };
+    if (std::any_of(planes.begin(), planes.end(), within)) near.push_back(site, body.volume);
+  }
+  near.n_real = near.size();
+  add_symmetry_ghosts(near, planes, reach);
+  return near.n_ghost();
+}
+
 template void check_symmetry_planes<1>(const core::Lattice<1>&, const IVec<1>&, const IVec<1>&,
                                        const std::vector<SymmetryPlane>&, double, const std::string&);
 template void check_symmetry_planes<2>(const core::Lattice<2>&, const IVec<2>&, const IVec<2>&,
@@ -92,5 +110,8 @@ template void check_symmetry_planes<3>(const core::Lattice<3>&, const IVec<3>&, 
 template void add_symmetry_ghosts<1>(core::Particles<1>&, const std::vector<SymmetryPlane>&, double);
 template void add_symmetry_ghosts<2>(core::Particles<2>&, const std::vector<SymmetryPlane>&, double);
 template void add_symmetry_ghosts<3>(core::Particles<3>&, const std::vector<SymmetryPlane>&, double);
+template Index mirror_count<1>(const core::BodySites<1>&, const std::vector<SymmetryPlane>&, double);
+template Index mirror_count<2>(const core::BodySites<2>&, const std::vector<SymmetryPlane>&, double);
+template Index mirror_count<3>(const core::BodySites<3>&, const std::vector<SymmetryPlane>&, double);
 
 }  // namespace pdmpm::bc

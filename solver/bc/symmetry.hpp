@@ -3,9 +3,12 @@
 // radius of a plane gets a mirror image on the other side that copies its
 // owner's displacement and velocity, reflected. Planes must pass through a
 // lattice site or midway between two, so mirrors land on lattice sites.
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "solver/core/body_sites.hpp"
 #include "solver/core/particles.hpp"
 
 namespace pdmpm::bc {
@@ -31,14 +34,30 @@ void check_symmetry_planes(const core::Lattice<D>& lattice, const IVec<D>& lowes
 template <int D>
 void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach);
 
+// The lowest and highest site coordinates of p's real particles, per axis (lowest >
+// highest when there is none).
+template <int D>
+std::pair<IVec<D>, IVec<D>> real_site_bounds(const core::Particles<D>& p) {
+  IVec<D> lowest = IVec<D>::Constant(std::numeric_limits<std::int32_t>::max());
+  IVec<D> highest = IVec<D>::Constant(std::numeric_limits<std::int32_t>::min());
+  for (Index i = 0; i < p.n_real; ++i) lowest = lowest.cwiseMin(p.site[i]), highest = highest.cwiseMax(p.site[i]);
+  return {lowest, highest};
+}
+
 // Both, on a one-process body.
 template <int D>
 void add_symmetry_ghosts(core::Particles<D>& p, const std::vector<SymmetryPlane>& planes, double reach,
                          const std::string& file) {
-  IVec<D> lowest = p.site[0], highest = p.site[0];
-  for (Index i = 0; i < p.n_real; ++i) lowest = lowest.cwiseMin(p.site[i]), highest = highest.cwiseMax(p.site[i]);
-  if (p.n_real > 0) check_symmetry_planes(p.lattice, lowest, highest, planes, reach, file);
+  const auto [lowest, highest] = real_site_bounds(p);
+  check_symmetry_planes(p.lattice, lowest, highest, planes, reach, file);
   add_symmetry_ghosts(p, planes, reach);
 }
+
+// The number of mirrors add_symmetry_ghosts makes for a whole body of checked planes,
+// from its sites within `reach` of a plane (no other site is mirrored, and a mirror lands
+// beyond its plane, where the body has no site): what one process makes, counted by a
+// distributed process that holds the body as site keys.
+template <int D>
+Index mirror_count(const core::BodySites<D>& body, const std::vector<SymmetryPlane>& planes, double reach);
 
 }  // namespace pdmpm::bc

@@ -141,8 +141,12 @@ struct Particles {
 
   // The largest of `local` over the processes of a run.
   double max_everywhere(double local) const { return remote ? remote->max(local) : local; }
-  // A real particle's index in the whole body (its index here in a one-process run).
-  Index global_index(Index i) const { return remote ? remote->first_global() + i : i; }
+  // A real particle's or remote ghost's index in the whole body (a one-process run: its
+  // index here; a distributed run's mirror ghosts have none).
+  Index global_index(Index i) const {
+    if (!remote) return i;
+    return i < n_real ? remote->first_global() + i : remote->ghost_global(i - n_real);
+  }
 
   // The particle whose state a particle carries: itself, a mirror ghost's owner, or
   // itself for a remote ghost (its entries are the remote owner's, received).

@@ -20,36 +20,23 @@ int owner_rank(Index g, Index n, int ranks) {
 }
 
 template <int D>
-std::vector<Index> halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own) {
-  std::vector<Index> halo;
+Halo halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own) {
+  Halo halo;
   for (Index i = own.begin; i < own.end; ++i) {
     const IVec<D> site = body.site(i);
     for (const auto& off : stencil.offset) {
       const Index j = body.find(site + off);
-      if (j >= 0 && !own.contains(j)) halo.push_back(j);
+      halo.own_bonds += j >= 0;
+      if (j >= 0 && !own.contains(j)) halo.global.push_back(j);
     }
   }
-  std::sort(halo.begin(), halo.end());
-  halo.erase(std::unique(halo.begin(), halo.end()), halo.end());
+  std::sort(halo.global.begin(), halo.global.end());
+  halo.global.erase(std::unique(halo.global.begin(), halo.global.end()), halo.global.end());
   return halo;
 }
 
-template <int D>
-std::int64_t whole_body_bonds(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own) {
-  std::int64_t bonds = 0;
-  for (Index i = own.begin; i < own.end; ++i) {
-    const IVec<D> site = body.site(i);
-    for (const auto& off : stencil.offset) bonds += body.find(site + off) >= 0;
-  }
-  return bonds;
-}
-
-template std::vector<Index> halo_of<1>(const core::BodySites<1>&, const core::Stencil<1>&, OwnedRange);
-template std::vector<Index> halo_of<2>(const core::BodySites<2>&, const core::Stencil<2>&, OwnedRange);
-template std::vector<Index> halo_of<3>(const core::BodySites<3>&, const core::Stencil<3>&, OwnedRange);
-
-template std::int64_t whole_body_bonds<1>(const core::BodySites<1>&, const core::Stencil<1>&, OwnedRange);
-template std::int64_t whole_body_bonds<2>(const core::BodySites<2>&, const core::Stencil<2>&, OwnedRange);
-template std::int64_t whole_body_bonds<3>(const core::BodySites<3>&, const core::Stencil<3>&, OwnedRange);
+template Halo halo_of<1>(const core::BodySites<1>&, const core::Stencil<1>&, OwnedRange);
+template Halo halo_of<2>(const core::BodySites<2>&, const core::Stencil<2>&, OwnedRange);
+template Halo halo_of<3>(const core::BodySites<3>&, const core::Stencil<3>&, OwnedRange);
 
 }  // namespace pdmpm::dist

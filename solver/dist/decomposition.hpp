@@ -27,14 +27,15 @@ OwnedRange owned_range(Index n, int rank, int ranks);
 // The process that owns global index g (the inverse of owned_range).
 int owner_rank(Index g, Index n, int ranks);
 
-// Global indices, increasing, of the sites outside `own` that are a stencil neighbour
-// of a site in it.
+// The halo of `own`: the global indices, increasing, of the sites outside it that are a
+// stencil neighbour of a site in it; and the bonds own's sites have in the whole body (their
+// stencil neighbours), which the process's families must hold — a store missing one of them
+// is found (a halo too thin).
+struct Halo {
+  std::vector<Index> global;
+  std::int64_t own_bonds = 0;
+};
 template <int D>
-std::vector<Index> halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
-
-// The bonds `own`'s particles have in the whole body: their stencil neighbours, counted
-// apart from the halo, so that a store missing one of them is found (a halo too thin).
-template <int D>
-std::int64_t whole_body_bonds(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
+Halo halo_of(const core::BodySites<D>& body, const core::Stencil<D>& stencil, OwnedRange own);
 
 }  // namespace pdmpm::dist

@@ -11,9 +11,9 @@ core::Particles<D> distribute(const Communicator& comm, const core::BodySites<D>
                               Ownership& ownership) {
   ownership.global_count = body.size();
   ownership.own = owned_range(body.size(), comm.rank(), comm.size());
-  const auto stencil = core::Stencil<D>::build(family_ratio);
-  ownership.halo = halo_of(body, stencil, ownership.own);
-  ownership.whole_body_bonds = whole_body_bonds(body, stencil, ownership.own);
+  auto halo = halo_of(body, core::Stencil<D>::build(family_ratio), ownership.own);
+  ownership.halo = std::move(halo.global);
+  ownership.whole_body_bonds = halo.own_bonds;
   // Own particles as the real ones, then the halo as remote ghosts, both in global order.
   auto local = body.particles(ownership.own.begin, ownership.own.end, ownership.halo);
   auto exchange = std::make_shared<HaloExchange>(comm, body.size(), ownership.own, local.n_real, ownership.halo);

@@ -5,19 +5,12 @@
 namespace pdmpm::pd {
 namespace {
 
-// A store index in the numbering of the list: global in a distributed run.
-template <int D>
-Index global_of_store(const core::Particles<D>& p, Index k) {
-  if (!p.remote) return k;
-  return k < p.n_real ? p.global_index(k) : p.remote->ghost_global(k - p.n_real);
-}
-
 // True if the particle of global index gj is a live bond partner of i.
 template <int D>
 bool bonded(const System<D>& sys, Index i, Index gj) {
   const auto& fam = sys.families;
   for (BondIndex b = fam.begin(i); b < fam.end(i); ++b)
-    if (global_of_store(sys.particles, fam.neighbor[b]) == gj) return sys.bonds.live(b);
+    if (sys.particles.global_index(fam.neighbor[b]) == gj) return sys.bonds.live(b);
   return false;
 }
 
@@ -100,8 +93,8 @@ std::int64_t ShortRangeContact<D>::add_forces(System<D>& sys) {
   for (Index i = 0; i < local; ++i) y_[i] = p.position(i);
   real_ = p.n_real;
   bool stale = list_is_stale(local, skin) || static_cast<Index>(start_.size()) != real_ + 1;
-  if (p.remote) stale = p.remote->max(stale ? 1.0 : 0.0) > 0.0;  // every process rebuilds with the others
   if (p.remote) {
+    stale = p.remote->max(stale ? 1.0 : 0.0) > 0.0;  // every process rebuilds with the others
     if (stale)
       ghosts_.find(p, y_, reach + skin);
     else

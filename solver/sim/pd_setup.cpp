@@ -70,39 +70,13 @@ double family_reach(const io::Scene& s) { return pd::family_ratio(s.partial_volu
 template <int D>
 void check_symmetry_planes(const io::Scene& s, const core::Particles<D>& p, const dist::Communicator* comm) {
   if (s.symmetries.empty()) return;
-  Vec<D> lo = Vec<D>::Constant(1e300), hi = Vec<D>::Constant(-1e300);
-  for (Index i = 0; i < p.n_real; ++i)
-    for (int a = 0; a < D; ++a)
-      lo[a] = std::min<double>(lo[a], p.site[i][a]), hi[a] = std::max<double>(hi[a], p.site[i][a]);
+  auto [lowest, highest] = bc::real_site_bounds(p);
   if (comm)
-    for (int a = 0; a < D; ++a) lo[a] = comm->min(lo[a]), hi[a] = comm->max(hi[a]);
-  bc::check_symmetry_planes<D>(p.lattice, lo.template cast<std::int32_t>(), hi.template cast<std::int32_t>(),
-                               symmetry_planes(s), family_reach(s), s.file);
-}
-
-// The mirrors one process makes for the whole body (a distributed run's summary reports
-// them): those of the sites within a family's reach of a plane — no other site is mirrored,
-// and a mirror lands beyond its plane, where the body has no site.
-template <int D>
-Index count_symmetry_ghosts(const io::Scene& s, const core::BodySites<D>& body) {
-  const auto planes = symmetry_planes(s);
-  if (planes.empty()) return 0;
-  const double reach = family_reach(s), dx = body.lattice.spacing;
-  const double reach_twice = 2.0 * std::floor(reach / dx * (1.0 + 1e-10));
-  core::Particles<D> near;
-  near.lattice = body.lattice;
-  for (Index g = 0; g < body.size(); ++g) {
-    const IVec<D> site = body.site(g);
-    for (const auto& plane : planes)
-      if (std::abs(2.0 * site[plane.axis] -
-                   std::round(2.0 * (plane.position - body.lattice.origin[plane.axis]) / dx)) <= reach_twice) {
-        near.push_back(site, body.volume);
-        break;
-      }
-  }
-  near.n_real = near.size();
-  bc::add_symmetry_ghosts<D>(near, planes, reach);
-  return near.n_ghost();
+    for (int a = 0; a < D; ++a) {
+      lowest[a] = static_cast<std::int32_t>(comm->min(lowest[a]));
+      highest[a] = static_cast<std::int32_t>(comm->max(highest[a]));
+    }
+  bc::check_symmetry_planes<D>(p.lattice, lowest, highest, symmetry_planes(s), family_reach(s), s.file);
 }
 
 // A halo too thin would leave bonds out of families without a trace: the bonds of every
@@ -161,7 +135,7 @@ PdSetup<D> build_pd(const io::Scene& s, const dist::Communicator* comm) {
     out.probes = locate_probes<D>(s, p.x0, p.n_real, comm, out.ownership->own, body.size());
     out.j_integrals = j_integral_outputs<D>(s, p.x0, p.n_real, comm);
     check_symmetry_planes<D>(s, p, comm);
-    out.symmetry_ghosts = count_symmetry_ghosts<D>(s, body);
+    out.symmetry_ghosts = bc::mirror_count<D>(body, symmetry_planes(s), family_reach(s));
     // Crack tracking follows connected components over the whole body: every process keeps
     // the whole body's families, their flags gathered at each history sample (PdRun).
     if (s.crack.enabled) out.crack_body.emplace().particles = body.particles(0, body.size());

@@ -40,7 +40,7 @@ TEST(Decomposition, HaloIsExactlyTheOtherProcessesStencilNeighbours) {
   const auto body = sites.particles(0, sites.size());
   const auto stencil = core::Stencil<2>::build(3.015);
   const auto own = owned_range(body.n_real, 1, 3);
-  const auto halo = halo_of(sites, stencil, own);
+  const auto halo = halo_of(sites, stencil, own).global;
   std::set<Index> expected;
   for (Index i = own.begin; i < own.end; ++i)
     for (Index j = 0; j < body.n_real; ++j)
@@ -54,7 +54,9 @@ TEST(Decomposition, LocalFamiliesAreTheWholeBodysInTheSameOrder) {
   const auto whole = core::Families<2>::build(sites.particles(0, sites.size()), 3.015);
   for (int r = 0; r < 3; ++r) {
     const auto own = owned_range(sites.size(), r, 3);
-    const auto halo = halo_of(sites, whole.stencil, own);
+    const auto [halo, own_bonds] = halo_of(sites, whole.stencil, own);
+    // The count a run checks its families against: the whole body's bonds of these particles.
+    EXPECT_EQ(own_bonds, whole.offsets[own.end] - whole.offsets[own.begin]);
     const auto local = sites.particles(own.begin, own.end, halo);
     ASSERT_EQ(local.n_real, own.size());
     ASSERT_EQ(local.n_ghost(), static_cast<Index>(halo.size()));
