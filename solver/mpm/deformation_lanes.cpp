@@ -4,44 +4,11 @@
 
 #include <algorithm>
 
-#include "solver/mpm/lanes.hpp"
 #include "solver/mpm/stencil_row.hpp"
 
 namespace pdmpm::mpm {
 
 namespace {
-
-template <int W>
-__attribute__((always_inline)) inline void advance_deformation_by(DeformationLanes& in, double dt) {
-  using V = Lanes<W>;
-  using d = typename V::d;
-  const double h = 0.5 * dt;
-  for (int c0 = 0; c0 < kDeformationLanes; c0 += W) {
-    const d L00 = V::load(in.l00 + c0), L01 = V::load(in.l01 + c0), L10 = V::load(in.l10 + c0);
-    const d L11 = V::load(in.l11 + c0);
-    // A = I − ½Δt L, B = I + ½Δt L, C = A⁻¹ B (cayley_increment<2>).
-    const d a00 = 1.0 - h * L00, a01 = 0.0 - h * L01, a10 = 0.0 - h * L10, a11 = 1.0 - h * L11;
-    const d b00 = 1.0 + h * L00, b01 = 0.0 + h * L01, b10 = 0.0 + h * L10, b11 = 1.0 + h * L11;
-    const d inv_det = 1.0 / (a00 * a11 - a10 * a01);
-    const d i00 = a11 * inv_det, i01 = -a01 * inv_det, i10 = -a10 * inv_det, i11 = a00 * inv_det;
-    const d c00 = i00 * b00 + i01 * b10, c01 = i00 * b01 + i01 * b11;
-    const d c10 = i10 * b00 + i11 * b10, c11 = i10 * b01 + i11 * b11;
-    const d F00 = V::load(in.f00 + c0), F01 = V::load(in.f01 + c0), F10 = V::load(in.f10 + c0);
-    const d F11 = V::load(in.f11 + c0);
-    V::store(in.f00 + c0, c00 * F00 + c01 * F10);
-    V::store(in.f01 + c0, c00 * F01 + c01 * F11);
-    V::store(in.f10 + c0, c10 * F00 + c11 * F10);
-    V::store(in.f11 + c0, c10 * F01 + c11 * F11);
-  }
-}
-
-void advance_deformation_sse2(DeformationLanes& in, double dt) { advance_deformation_by<2>(in, dt); }
-__attribute__((target("avx2"))) void advance_deformation_avx2(DeformationLanes& in, double dt) {
-  advance_deformation_by<4>(in, dt);
-}
-__attribute__((target("avx512f"))) void advance_deformation_avx512(DeformationLanes& in, double dt) {
-  advance_deformation_by<8>(in, dt);
-}
 
 // The reference: Simulation<2>::velocity_gradient's sum, L += v_I ∇S_Iᵀ node by node.
 void velocity_gradient_scalar(DeformationLanes& out, const Stencil<2>* stencil, int n, const Vec<2>* vg,
@@ -144,16 +111,6 @@ void velocity_gradient_lanes(DeformationLanes& lanes, const Stencil<2>* stencil,
                              Index row_stride) {
   static const VelocityGradientLanesFunction chosen = choose_lane_variant(velocity_gradient_lanes_variants());
   chosen(lanes, stencil, n, grid_velocity, row_stride);
-}
-
-std::vector<LaneVariant<DeformationLanesFunction>> deformation_lanes_variants() {
-  return lane_variants<DeformationLanesFunction>(advance_deformation_sse2, advance_deformation_avx2,
-                                                 advance_deformation_avx512);
-}
-
-void advance_deformation_lanes(DeformationLanes& lanes, double dt) {
-  static const DeformationLanesFunction chosen = choose_lane_variant(deformation_lanes_variants());
-  chosen(lanes, dt);
 }
 
 }  // namespace pdmpm::mpm

@@ -31,7 +31,7 @@ struct J2Constants {
 };
 
 // Where the plane-stress return's Newton iteration starts (j2_return_plane_stress,
-// plane_stress_lanes.cpp): the root of its consistency condition with both spectral modes
+// plane_stress_lanes_impl.hpp): the root of its consistency condition with both spectral modes
 // scaled by their mean modulus c̄ = (c₁s₁ + c₂s₂)/(s₁ + s₂), in closed form for linear
 // hardening, with S = s₁ + s₂ = φ₀², κ₀ = σ_y + H α₀:
 //   Δγ₀ = S (φ₀/√2 − κ₀/√3) / (κ₀ (c₁s₁ + c₂s₂)/√3 + (√2/3) H φ₀ S).
@@ -49,7 +49,7 @@ inline T plane_stress_newton_start(T s1, T s2, double c1, double c2, T kappa0, d
 
 // Constants of the plane-stress return, as multiplications: a division by 3 or √2 costs a
 // yielding point as much as a step of its iteration (j2_return_plane_stress and
-// plane_stress_lanes.cpp use the same ones, so the two give the same bits).
+// plane_stress_lanes_impl.hpp use the same ones, so the two give the same bits).
 inline constexpr double kInvSqrt2 = 0.70710678118654752440;
 inline constexpr double kThird = 1.0 / 3.0;
 inline constexpr double kSqrt2over3 = 0.81649658092772603273;  // √(2/3)

@@ -17,7 +17,7 @@ double atanh_over_x(double x) { return x < kSeriesLimit ? atanh_over_x_series(x 
 // ln of a symmetric positive definite 2×2 matrix U of determinant det_U without
 // dividing by a small eigenvalue gap: with eigenvalues m ± r,
 // ln U = ½ ln(det U) I + q (U − m I), q = (ln(m + r) − ln(m − r))/(2r) = atanh(r/m)/r,
-// both divisions by m as one reciprocal (polar_lanes.cpp: the same operations).
+// both divisions by m as one reciprocal (polar_lanes_impl.hpp: the same operations).
 Mat<2> log_spd2(const Mat<2>& U, double det_U) {
   const double m = 0.5 * (U(0, 0) + U(1, 1));
   const double hd = 0.5 * (U(0, 0) - U(1, 1));

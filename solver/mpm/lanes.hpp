@@ -4,7 +4,11 @@
 // time. Wider generic vectors than the hardware's make GCC 12 compare lane by lane.
 // Every operation is the IEEE one per lane and the files using these compile
 // without FMA contraction, so each version gives the scalar code's bits.
-// Included only by the lane files (gimp_lanes.cpp, polar_lanes.cpp).
+// Included only by the lane templates (*_impl.hpp), which lanes_<isa>.cpp compile once
+// per instruction set (lane_set.hpp).
+#ifndef PDMPM_LANES_WIDTH
+#error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
+#endif
 #include <cmath>
 #include <cstring>
 
@@ -15,9 +19,7 @@ struct Lanes {
   typedef double d __attribute__((vector_size(8 * W)));
   typedef long long m __attribute__((vector_size(8 * W)));  // masks: all ones or zero per lane
   // a where the mask is set, else b: bitwise.
-  __attribute__((always_inline)) static d select(m mask, d a, d b) {
-    return reinterpret_cast<d>((reinterpret_cast<m>(a) & mask) | (reinterpret_cast<m>(b) & ~mask));
-  }
+  __attribute__((always_inline)) static d select(m mask, d a, d b) { return mask ? a : b; }
   __attribute__((always_inline)) static d load(const double* p) {
     d v;
     std::memcpy(&v, p, sizeof v);

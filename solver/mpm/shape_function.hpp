@@ -22,7 +22,7 @@ struct Weights1D {
 
 // The cell size h and half-width lp of a particle's uGIMP weights along one axis, with
 // the reciprocals the weights multiply by: two divisions per particle and axis instead
-// of one per node and term (gimp_lanes.cpp does the same operations in lanes).
+// of one per node and term (gimp_lanes_impl.hpp does the same operations in lanes).
 struct GimpScale {
   double h, lp, inv_h, inv_h_lp;  // 1/h, 1/(h lp)
   GimpScale(double h_, double lp_) : h(h_), lp(lp_), inv_h(1.0 / h_), inv_h_lp(inv_h * (1.0 / lp_)) {}

@@ -1,16 +1,19 @@
-#include "solver/mpm/gimp_lanes.hpp"
+#pragma once
+// The lane arithmetic of gimp_lanes.hpp, compiled once per instruction set (lane_set.hpp).
+#ifndef PDMPM_LANES_WIDTH
+#error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
+#endif
 
 #include <cmath>
 
+#include "solver/mpm/gimp_lanes.hpp"
 #include "solver/mpm/lanes.hpp"
 
 namespace pdmpm::mpm {
-
 namespace {
 
 template <int W>
-__attribute__((always_inline)) inline void gimp_lanes_by(const double* x_rel, const double* lp_in, double h,
-                                                         GimpLanes& out) {
+inline void gimp_lanes_by(const double* x_rel, const double* lp_in, double h, GimpLanes& out) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
@@ -45,23 +48,5 @@ __attribute__((always_inline)) inline void gimp_lanes_by(const double* x_rel, co
   }
 }
 
-void gimp_lanes_sse2(const double* x, const double* lp, double h, GimpLanes& out) { gimp_lanes_by<2>(x, lp, h, out); }
-__attribute__((target("avx2"))) void gimp_lanes_avx2(const double* x, const double* lp, double h, GimpLanes& out) {
-  gimp_lanes_by<4>(x, lp, h, out);
-}
-__attribute__((target("avx512f"))) void gimp_lanes_avx512(const double* x, const double* lp, double h, GimpLanes& out) {
-  gimp_lanes_by<8>(x, lp, h, out);
-}
-
 }  // namespace
-
-std::vector<LaneVariant<GimpLanesFunction>> gimp_lanes_variants() {
-  return lane_variants<GimpLanesFunction>(gimp_lanes_sse2, gimp_lanes_avx2, gimp_lanes_avx512);
-}
-
-void gimp_lanes(const double* x_rel, const double* lp, double h, GimpLanes& out) {
-  static const GimpLanesFunction chosen = choose_lane_variant(gimp_lanes_variants());
-  chosen(x_rel, lp, h, out);
-}
-
 }  // namespace pdmpm::mpm

@@ -1,16 +1,20 @@
-#include "solver/mpm/polar_lanes.hpp"
+#pragma once
+// The lane arithmetic of polar_lanes.hpp, compiled once per instruction set (lane_set.hpp).
+#ifndef PDMPM_LANES_WIDTH
+#error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
+#endif
 
 #include <cmath>
 
 #include "solver/mpm/lanes.hpp"
+#include "solver/mpm/polar_lanes.hpp"
 #include "solver/mpm/series_log_exp.hpp"
 
 namespace pdmpm::mpm {
-
 namespace {
 
 template <int W>
-__attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in) {
+inline unsigned polar_log_lanes_by(PolarLanes& in) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
@@ -48,19 +52,5 @@ __attribute__((always_inline)) inline unsigned polar_log_lanes_by(PolarLanes& in
   return scalar;
 }
 
-unsigned polar_log_lanes_sse2(PolarLanes& in) { return polar_log_lanes_by<2>(in); }
-__attribute__((target("avx2"))) unsigned polar_log_lanes_avx2(PolarLanes& in) { return polar_log_lanes_by<4>(in); }
-__attribute__((target("avx512f"))) unsigned polar_log_lanes_avx512(PolarLanes& in) { return polar_log_lanes_by<8>(in); }
-
 }  // namespace
-
-std::vector<LaneVariant<PolarLanesFunction>> polar_lanes_variants() {
-  return lane_variants<PolarLanesFunction>(polar_log_lanes_sse2, polar_log_lanes_avx2, polar_log_lanes_avx512);
-}
-
-unsigned polar_log_lanes(PolarLanes& lanes) {
-  static const PolarLanesFunction chosen = choose_lane_variant(polar_lanes_variants());
-  return chosen(lanes);
-}
-
 }  // namespace pdmpm::mpm

@@ -1,14 +1,18 @@
-#include "solver/mpm/plane_stress_lanes.hpp"
+#pragma once
+// The lane arithmetic of plane_stress_lanes.hpp, compiled once per instruction set (lane_set.hpp).
+#ifndef PDMPM_LANES_WIDTH
+#error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
+#endif
 
 #include <cmath>
 #include <limits>
 
 #include "solver/mpm/j2_plasticity.hpp"
 #include "solver/mpm/lanes.hpp"
+#include "solver/mpm/plane_stress_lanes.hpp"
 #include "solver/mpm/series_log_exp.hpp"
 
 namespace pdmpm::mpm {
-
 namespace {
 
 // The plane-stress return map of j2_return_plane_stress for the lanes in `run`, each
@@ -63,7 +67,7 @@ __attribute__((always_inline)) inline typename Lanes<W>::d consistency_parameter
 }
 
 template <int W>
-__attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const PlaneStressLaw& law, PlaneStressLanes& in) {
+inline unsigned plane_stress_lanes_by(const PlaneStressLaw& law, PlaneStressLanes& in) {
   using V = Lanes<W>;
   using d = typename V::d;
   using m = typename V::m;
@@ -139,26 +143,5 @@ __attribute__((always_inline)) inline unsigned plane_stress_lanes_by(const Plane
   return by_law;
 }
 
-unsigned plane_stress_lanes_sse2(const PlaneStressLaw& law, PlaneStressLanes& in) {
-  return plane_stress_lanes_by<2>(law, in);
-}
-__attribute__((target("avx2"))) unsigned plane_stress_lanes_avx2(const PlaneStressLaw& law, PlaneStressLanes& in) {
-  return plane_stress_lanes_by<4>(law, in);
-}
-__attribute__((target("avx512f"))) unsigned plane_stress_lanes_avx512(const PlaneStressLaw& law, PlaneStressLanes& in) {
-  return plane_stress_lanes_by<8>(law, in);
-}
-
 }  // namespace
-
-std::vector<LaneVariant<PlaneStressLanesFunction>> plane_stress_lanes_variants() {
-  return lane_variants<PlaneStressLanesFunction>(plane_stress_lanes_sse2, plane_stress_lanes_avx2,
-                                                 plane_stress_lanes_avx512);
-}
-
-unsigned plane_stress_lanes(const PlaneStressLaw& law, PlaneStressLanes& lanes) {
-  static const PlaneStressLanesFunction chosen = choose_lane_variant(plane_stress_lanes_variants());
-  return chosen(law, lanes);
-}
-
 }  // namespace pdmpm::mpm
