@@ -9,6 +9,8 @@
 #ifndef PDMPM_LANES_WIDTH
 #error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
 #endif
+#include <immintrin.h>
+
 #include <cmath>
 #include <cstring>
 
@@ -33,14 +35,20 @@ struct Lanes {
     for (double& e : v) e = std::sqrt(e);
     return load(v);
   }
-  // Per lane std::floor (exact, so any instruction gives the same bits). GCC 12 keeps
-  // the lanes in registers here (a scalar round per lane, then shuffles), where floors
-  // stored to an array and loaded back as a vector wait for the stores (no forwarding).
+  // Per lane std::floor (exact, so any instruction gives the same bits): one rounding
+  // instruction with AVX-512 or AVX2; SSE2 has none, and there GCC 12 keeps the lanes in
+  // registers (a scalar floor per lane, then shuffles).
   __attribute__((always_inline)) static d floor(d x) {
-    double v[W];
-    std::memcpy(v, &x, sizeof x);
-    for (double& e : v) e = std::floor(e);
-    return load(v);
+    if constexpr (W == 8) {
+      return reinterpret_cast<d>(_mm512_roundscale_pd(reinterpret_cast<__m512d>(x), _MM_FROUND_TO_NEG_INF));
+    } else if constexpr (W == 4) {
+      return reinterpret_cast<d>(_mm256_floor_pd(reinterpret_cast<__m256d>(x)));
+    } else {
+      double v[W];
+      std::memcpy(v, &x, sizeof x);
+      for (double& e : v) e = std::floor(e);
+      return load(v);
+    }
   }
   __attribute__((always_inline)) static void store(double* p, d v) { std::memcpy(p, &v, sizeof v); }
   // v with fn(x) in the lanes whose bit is set: a library function where a lane's series
@@ -54,15 +62,15 @@ struct Lanes {
       if (lanes >> i & 1u) out[i] = fn(in[i]);
     return load(out);
   }
-  // Bit i set where lane i of the mask is. (One instruction in intrinsics, but those do
-  // not inline through these templates into the per-ISA functions, GCC 12; an OR-fold of
-  // the lanes measured no faster than this loop.)
+  // Bit i set where lane i of the mask is: the lanes' sign bits in one instruction (each
+  // width's file compiles with its instruction set, lane_set.hpp; AVX512DQ for eight).
   __attribute__((always_inline)) static unsigned bits(m mask) {
-    long long lanes[W];
-    std::memcpy(lanes, &mask, sizeof mask);
-    unsigned b = 0;
-    for (int i = 0; i < W; ++i) b |= static_cast<unsigned>(lanes[i] & 1) << i;
-    return b;
+    if constexpr (W == 8)
+      return _mm512_movepi64_mask(reinterpret_cast<__m512i>(mask));
+    else if constexpr (W == 4)
+      return static_cast<unsigned>(_mm256_movemask_pd(reinterpret_cast<__m256d>(mask)));
+    else
+      return static_cast<unsigned>(_mm_movemask_pd(reinterpret_cast<__m128d>(mask)));
   }
 };
 
