@@ -36,7 +36,7 @@ struct GatherMode {
 
 // Lanes of a block whose bond is intact and active (padding lanes excluded).
 inline m8 live_lanes(const FamilyView& fam, BondIndex b0, int count) {
-  return lanes_zero(fam.broken + b0) & (lane_ids < count);
+  return lanes_zero(fam.broken + b0) & first_lanes(count);
 }
 
 // Lanes of a block whose bond counts in its owner's state: live, or intact and kept
@@ -44,7 +44,7 @@ inline m8 live_lanes(const FamilyView& fam, BondIndex b0, int count) {
 // grid particles). Without such bonds in the body, the live lanes.
 inline m8 state_lanes(const FamilyView& fam, BondIndex b0, int count) {
   if (!fam.state_only_bonds) return live_lanes(fam, b0, count);
-  return lanes_zero_ignoring(fam.broken + b0, kStateOnlyFlag) & (lane_ids < count);
+  return lanes_zero_ignoring(fam.broken + b0, kStateOnlyFlag) & first_lanes(count);
 }
 
 // The live lanes among a state pass's visited ones: only they may break (a state-only
@@ -171,7 +171,7 @@ inline Deformed<D> deform(const Block<D>& B) {
 // s ≥ s₀, or s > s₀ for the break-after-force rule.
 inline m8 reaches_critical_stretch(const d8& num, const d8& len, const d8& L, double s0, bool strict) {
   const d8 limit = s0 * L * (len + L);
-  return strict ? num > limit : num >= limit;
+  return strict ? greater(num, limit) : greater_equal(num, limit);
 }
 
 // Bonds of this block that just broke are marked; returns how many.

@@ -61,11 +61,37 @@ inline m8 widen_bytes(const std::uint8_t* bytes) {
 }
 
 // Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
-inline m8 lanes_zero(const std::uint8_t* bytes) { return widen_bytes(bytes) == 0; }
+// Below AVX-512 GCC 12 compares eight 64-bit lanes one by one (compare_greater says why);
+// there the bytes are compared in one register and their results widened.
+inline m8 zero_bytes_to_lanes(__m128i bytes) {
+#if defined(__AVX512F__)
+  return reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, bytes)) == 0;
+#else
+  const __m128i z = _mm_cmpeq_epi8(bytes, _mm_setzero_si128());  // 0xFF where a byte is 0
+  union {
+    m8 v;
+    __m128i q[4];
+  } r{};
+#if defined(__AVX2__)
+  const __m256i lo = _mm256_cvtepi8_epi64(z), hi = _mm256_cvtepi8_epi64(_mm_srli_si128(z, 4));
+  r.q[0] = _mm256_castsi256_si128(lo), r.q[1] = _mm256_extracti128_si256(lo, 1);
+  r.q[2] = _mm256_castsi256_si128(hi), r.q[3] = _mm256_extracti128_si256(hi, 1);
+#else
+  const __m128i w = _mm_unpacklo_epi8(z, z), d0 = _mm_unpacklo_epi16(w, w), d1 = _mm_unpackhi_epi16(w, w);
+  r.q[0] = _mm_unpacklo_epi32(d0, d0), r.q[1] = _mm_unpackhi_epi32(d0, d0);
+  r.q[2] = _mm_unpacklo_epi32(d1, d1), r.q[3] = _mm_unpackhi_epi32(d1, d1);
+#endif
+  return r.v;
+#endif
+}
+inline m8 lanes_zero(const std::uint8_t* bytes) {
+  return zero_bytes_to_lanes(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)));
+}
 
 // The same for the bytes with the bits of `ignored` cleared.
 inline m8 lanes_zero_ignoring(const std::uint8_t* bytes, std::uint8_t ignored) {
-  return (widen_bytes(bytes) & static_cast<std::int64_t>(static_cast<std::uint8_t>(~ignored))) == 0;
+  const __m128i kept = _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored)));
+  return zero_bytes_to_lanes(_mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)), kept));
 }
 
 }  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS

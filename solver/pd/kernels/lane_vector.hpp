@@ -45,11 +45,53 @@ inline d8 sqrt8(d8 x) {
 #endif
 }
 
+// a > b (or a ≥ b with OrEqual) per lane as a mask. With AVX-512 the vector operator; below
+// it, GCC 12 lowers an eight-lane comparison lane by lane (scalar compares, sets and
+// inserts: the AVX2 and SSE2 LPS kernels ran 5–6× slower than the AVX-512 one), so the
+// lanes are compared a native register at a time. The same lanes either way.
+template <bool OrEqual>
+inline m8 compare_greater(d8 a, d8 b) {
+#if defined(__AVX512F__)
+  return OrEqual ? a >= b : a > b;
+#elif defined(__AVX__)
+  typedef double d4 __attribute__((vector_size(32)));
+  union {
+    d8 v;
+    d4 h[2];
+  } ua{a}, ub{b}, r{};
+  for (int h = 0; h < 2; ++h)
+    r.h[h] = reinterpret_cast<d4>(_mm256_cmp_pd(reinterpret_cast<__m256d>(ua.h[h]), reinterpret_cast<__m256d>(ub.h[h]),
+                                                OrEqual ? _CMP_GE_OQ : _CMP_GT_OQ));
+  return reinterpret_cast<m8>(r.v);
+#else
+  typedef double d2 __attribute__((vector_size(16)));
+  union {
+    d8 v;
+    d2 q[4];
+  } ua{a}, ub{b}, r{};
+  for (int q = 0; q < 4; ++q) {
+    const __m128d x = reinterpret_cast<__m128d>(ua.q[q]), y = reinterpret_cast<__m128d>(ub.q[q]);
+    r.q[q] = reinterpret_cast<d2>(OrEqual ? _mm_cmpge_pd(x, y) : _mm_cmpgt_pd(x, y));
+  }
+  return reinterpret_cast<m8>(r.v);
+#endif
+}
+inline m8 greater(d8 a, d8 b) { return compare_greater<false>(a, b); }
+inline m8 greater_equal(d8 a, d8 b) { return compare_greater<true>(a, b); }
+
 // Lane-wise a where mask is set, else +0.0: a bitwise and, since mask lanes are
 // all ones or all zeros (the vector ?: of GCC 12 is lowered lane by lane).
 inline d8 keep(m8 mask, d8 a) { return reinterpret_cast<d8>(reinterpret_cast<m8>(a) & mask); }
 
-inline constexpr m8 lane_ids = {0, 1, 2, 3, 4, 5, 6, 7};
+// The lanes below count (0 ≤ count ≤ 8), from a table: the mask {0, …, 7} < count, which
+// below AVX-512 GCC 12 would compare lane by lane.
+inline m8 first_lanes(int count) {
+  static constexpr m8 table[9] = {
+      {0, 0, 0, 0, 0, 0, 0, 0},       {-1, 0, 0, 0, 0, 0, 0, 0},       {-1, -1, 0, 0, 0, 0, 0, 0},
+      {-1, -1, -1, 0, 0, 0, 0, 0},    {-1, -1, -1, -1, 0, 0, 0, 0},    {-1, -1, -1, -1, -1, 0, 0, 0},
+      {-1, -1, -1, -1, -1, -1, 0, 0}, {-1, -1, -1, -1, -1, -1, -1, 0}, {-1, -1, -1, -1, -1, -1, -1, -1}};
+  return table[count];
+}
 
 // Whether any lane of a mask is set.
 inline bool any(m8 mask) {
