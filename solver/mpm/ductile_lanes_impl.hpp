@@ -1,9 +1,6 @@
 #pragma once
-// The lane arithmetic of ductile_lanes.hpp, compiled once per instruction set (lane_set.hpp).
-#ifndef PDMPM_LANES_WIDTH
-#error "included by a lanes_<isa>.cpp only (lane_set.hpp): compiled once per instruction set"
-#endif
-
+// The lane arithmetic of ductile_lanes.hpp, compiled once per instruction set (lane_set.hpp;
+// lanes.hpp stops any other includer).
 #include <cmath>
 
 #include "solver/mpm/ductile_lanes.hpp"
