@@ -50,21 +50,11 @@ __attribute__((always_inline)) inline void gather_rows_wide(const double* base, 
 #endif
 }
 
-// Eight bytes widened to eight 64-bit lanes.
-inline m8 widen_bytes(const std::uint8_t* bytes) {
-#if defined(__AVX512F__)  // (the maskz form: GCC 12's unmasked one warns on its undefined source)
-  return reinterpret_cast<m8>(
-      _mm512_maskz_cvtepu8_epi64(0xFF, _mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes))));
-#else
-  return m8{bytes[0], bytes[1], bytes[2], bytes[3], bytes[4], bytes[5], bytes[6], bytes[7]};
-#endif
-}
-
-// Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
-// Below AVX-512 GCC 12 compares eight 64-bit lanes one by one (compare_greater says why);
-// there the bytes are compared in one register and their results widened.
+// The lanes whose byte (of the eight low bytes) is 0, as lane masks. Below AVX-512 GCC 12
+// compares eight 64-bit lanes one by one (compare_greater says why); there the bytes are
+// compared in one register and their results widened.
 inline m8 zero_bytes_to_lanes(__m128i bytes) {
-#if defined(__AVX512F__)
+#if defined(__AVX512F__)  // (the maskz form: GCC 12's unmasked one warns on its undefined source)
   return reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, bytes)) == 0;
 #else
   const __m128i z = _mm_cmpeq_epi8(bytes, _mm_setzero_si128());  // 0xFF where a byte is 0
@@ -84,6 +74,7 @@ inline m8 zero_bytes_to_lanes(__m128i bytes) {
   return r.v;
 #endif
 }
+// Eight bytes (0 or not) widened to lane masks of the lanes that are 0.
 inline m8 lanes_zero(const std::uint8_t* bytes) {
   return zero_bytes_to_lanes(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)));
 }
