@@ -1222,6 +1222,16 @@ Vec<D> Simulation<D>::momentum() const {
 }
 
 template <int D>
+std::optional<double> Simulation<D>::grid_kinetic_energy() const {
+  if (settings_.scheme != UpdateScheme::musl || steps_ == 0) return std::nullopt;
+  return sum_over_nodes<1>([&](Index i) {
+    const double m = grid_.mass[i];
+    return Eigen::Matrix<double, 1, 1>(m > 0.0 ? boundary_.real_share(i) * 0.5 * grid_.momentum[i].squaredNorm() / m
+                                               : 0.0);
+  })[0];
+}
+
+template <int D>
 double Simulation<D>::total_mass() const {
   return sum_over_points<1>([&](Index k) { return Eigen::Matrix<double, 1, 1>(state_.mass[active_[k]]); })[0];
 }

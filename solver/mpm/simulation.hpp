@@ -22,6 +22,7 @@
 #include <cstdint>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -98,6 +99,12 @@ class Simulation {
   double pending_boundary_work(double dt);
   Vec<D> momentum() const;
   double total_mass() const;
+  // The particles' kinetic energy as the grid sees it after the last step: Σ ½|p_I|²/m_I
+  // of MUSL's remapped nodal momenta (≤ energies().kinetic by Cauchy–Schwarz). The rest is
+  // kinetic energy in velocity modes the particle-to-grid map cannot see (its null space):
+  // FLIP keeps such modes and the grid does not restrain them. nullopt before the first step
+  // and for USF/USL, whose nodal momenta after a step are not the current velocities'.
+  std::optional<double> grid_kinetic_energy() const;
   // Force each boundary exerted on the body during the last step (N; volumes carry
   // thickness / cross-section), in the order of settings.boundaries.
   const std::vector<Vec<D>>& reactions() const { return reactions_; }

@@ -10,6 +10,7 @@
 #include "solver/mpm/parallel.hpp"
 #include "solver/mpm/simulation.hpp"
 #include "solver/sim/frame_fields.hpp"
+#include "solver/sim/null_space_watch.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
 #include "solver/sim/run_recorder.hpp"
@@ -39,6 +40,7 @@ class MpmRun {
   void history_row(std::int64_t step, double t);
   void frame(std::int64_t step, double t);
   bool stable(std::int64_t step, double t);
+  GridSampling sampling() const { return {sim_.cell_size() / scene_.spacing, s_.settings.flip}; }
   nlohmann::json summary() const;
   struct Peaks {
     double eq_plastic_strain = 0.0, von_mises = 0.0, displacement = 0.0;
@@ -48,6 +50,12 @@ class MpmRun {
   // Whole-body values: over every process of a distributed run (each holds its own points).
   std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
   double largest(double local) const { return comm_ ? comm_->max(local) : local; }
+  // MUSL's nodal momenta after a step are the current velocities' (null_space_watch.hpp).
+  bool musl() const { return s_.settings.scheme == mpm::UpdateScheme::musl; }
+  double null_space_kinetic(const mpm::Energies& e) const {
+    const std::optional<double> grid = sim_.grid_kinetic_energy();
+    return grid ? e.kinetic - *grid : 0.0;
+  }
 
   const io::Scene& scene_;
   MpmSetup<D>& s_;
@@ -55,6 +63,7 @@ class MpmRun {
   mpm::Simulation<D> sim_;
   RunRecorder rec_;
   const dist::Communicator* comm_;  // null unless distributed
+  NullSpaceWatch null_space_;
 
   double dt_ = 0.0, dt_cfl0_ = 0.0, end_time_ = 0.0, balance0_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, failed_ = 0;
@@ -77,6 +86,7 @@ void MpmRun<D>::start_outputs() {
                                 "external_work", "boundary_work", "damping_work",   "energy_error"};
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   cols.insert(cols.end(), {"failed_particles", "max_eq_plastic_strain", "max_von_mises"});
+  if (musl()) cols.push_back("null_space_kinetic_energy");
   for (const auto& b : scene_.boundaries)
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
@@ -123,6 +133,7 @@ void MpmRun<D>::history_row(std::int64_t step, double t) {
   for (int a = 0; a < D; ++a) row.push_back(mom[a]);
   const Peaks peak = peaks();
   row.insert(row.end(), {static_cast<double>(failed_), peak.eq_plastic_strain, peak.von_mises});
+  if (musl()) row.push_back(null_space_kinetic(e));
   // Reactions summed per scene boundary (a boundary with several boxes has several grid conditions).
   for (std::size_t k = 0; k < scene_.boundaries.size(); ++k) {
     if (scene_.boundaries[k].kind == io::BoundaryKind::traction) continue;
@@ -187,6 +198,9 @@ bool MpmRun<D>::stable(std::int64_t step, double t) {
     m << "unstable at step " << step << " (t = " << t << " s): particles moved so fast that the step " << dt_
       << " s exceeds the CFL limit h / max(c + |v|) = " << cfl << " s; lower time.safety_factor or time.dt";
   } else {
+    if (musl())
+      if (auto w = null_space_.check(e.kinetic, e.kinetic - null_space_kinetic(e), e.strain, step, t, sampling()))
+        rec_.warn("null_space", *w);
     return true;
   }
   rec_.stop("unstable", m.str());

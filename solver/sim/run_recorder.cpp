@@ -192,12 +192,21 @@ void RunRecorder::stop(std::string status, std::string message) {
   message_ = std::move(message);
 }
 
+void RunRecorder::warn(const std::string& key, const std::string& text) {
+  for (const auto& w : warnings_)
+    if (w.first == key) return;
+  warnings_.emplace_back(key, text);
+  if (writer()) std::cerr << "\npdmpm: warning: " << text << "\n";
+}
+
 RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t count, Index particles,
                               nlohmann::json method_keys) {
   if (progress_) progress_->finish(steps_done, t, count);
   if (fields_) fields_->close();
   history_.reset();
   const double wall = earlier_wall_seconds_ + seconds_since(t0_);
+  nlohmann::json warnings = nlohmann::json::array();
+  for (const auto& [key, text] : warnings_) warnings.push_back({{"key", key}, {"text", text}});
   nlohmann::json summary = std::move(method_keys);
   summary.update(
       {{"scene", scene_.id},
@@ -205,6 +214,7 @@ RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t co
        {"description", scene_.description},
        {"status", status_},
        {"message", message_},
+       {"warnings", warnings},
        {"steps", steps_done},
        {"steps_requested", total_steps_},
        {"threads", omp_get_max_threads()},

@@ -20,6 +20,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -106,6 +107,10 @@ class RunRecorder {
 
   const std::string& message() const { return message_; }
 
+  // A condition the user should know of that does not stop the run: printed once per key
+  // on stderr (by the writing process) and listed in summary.json "warnings".
+  void warn(const std::string& key, const std::string& text);
+
   // Closes the outputs, writes summary.json — the method's keys plus the keys
   // every run has — and commits the directory. Exit code 0 when completed, 3 otherwise.
   RunResult finish(std::int64_t steps_done, double t, std::int64_t count, Index particles, nlohmann::json method_keys);
@@ -125,6 +130,7 @@ class RunRecorder {
   std::vector<std::int64_t> frame_steps_;
   std::size_t next_frame_ = 0;
   std::string status_ = "completed", message_;
+  std::vector<std::pair<std::string, std::string>> warnings_;  // key, text
   StateFn state_;
   std::string no_checkpoint_reason_;
   std::chrono::steady_clock::time_point last_checkpoint_;

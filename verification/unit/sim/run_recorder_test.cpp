@@ -74,8 +74,9 @@ TEST(RunRecorder, WritesHistoryFramesAndTheCommonSummary) {
   const std::string history = test::read_text(f.dir / "history.csv");
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), 7) << history;
   const auto& s = r.summary;
-  for (const char* key : {"scene", "file", "description", "status", "message", "steps", "steps_requested", "threads",
-                          "wall_time_s", "peak_memory_bytes", "particle_steps_per_second", "provenance", "solver"})
+  for (const char* key :
+       {"scene", "file", "description", "status", "message", "steps", "steps_requested", "threads", "wall_time_s",
+        "peak_memory_bytes", "particle_steps_per_second", "provenance", "solver", "warnings"})
     EXPECT_TRUE(s.contains(key)) << key;
   EXPECT_EQ(s["steps"], 10);
   EXPECT_EQ(s["steps_requested"], 10);
@@ -95,6 +96,23 @@ TEST(RunRecorder, AnEarlyStopIsReportedWithExitCodeThree) {
   EXPECT_EQ(r.summary["message"], "the fake run blew up at step 7");
   EXPECT_EQ(r.summary["steps"], 7);
   EXPECT_TRUE(fs::exists(f.dir / "summary.json"));
+}
+
+TEST(RunRecorder, AWarningIsListedOncePerKeyAndTheRunGoesOn) {
+  Fixture f;
+  RunRecorder rec(f.scene, f.options);
+  rec.plan(2, 0.1);
+  rec.start({"step"}, 2, 0.2);
+  rec.warn("null_space", "first text");
+  rec.warn("null_space", "the same condition again");
+  rec.warn("other", "another condition");
+  const auto r = rec.finish(2, 0.2, 0, 2, {{"solver", "fake"}, {"dimension", 2}});
+  EXPECT_EQ(r.exit_code, 0);
+  const auto& w = r.summary["warnings"];
+  ASSERT_EQ(w.size(), 2u) << w.dump();
+  EXPECT_EQ(w[0]["key"], "null_space");
+  EXPECT_EQ(w[0]["text"], "first text");
+  EXPECT_EQ(w[1]["key"], "other");
 }
 
 TEST(RunRecorder, NothingIsLeftWhenTheRunThrows) {

@@ -1,0 +1,25 @@
+#include "solver/sim/null_space_watch.hpp"
+
+#include <fmt/format.h>
+
+namespace pdmpm::sim {
+
+std::optional<std::string> NullSpaceWatch::check(double kinetic, double grid_kinetic, double strain, std::int64_t step,
+                                                 double t, const GridSampling& grid) {
+  const bool moving = kinetic > kNullSpaceKineticFloor * (kinetic + strain);
+  const double share = moving ? (kinetic - grid_kinetic) / kinetic : 0.0;
+  if (!(share > kNullSpaceShareLimit)) {
+    above_since_ = -1;
+    return std::nullopt;
+  }
+  if (above_since_ < 0) above_since_ = step;
+  if (step - above_since_ < kNullSpaceSustainSteps) return std::nullopt;
+  return fmt::format(
+      "since step {} (t = {:.4g} s) more than {:.0f} % of the MPM particles' kinetic energy ({:.0f} % now) is in "
+      "velocity modes the grid cannot see (the null space of the particle-to-grid map, which FLIP keeps): the run may "
+      "turn unstable. This grid has {:.3g} particles per cell along an axis and flip = {:.3g}; 2 or more "
+      "(mpm.cell_factor ≥ 2) or a PIC share (mpm.flip < 1) damp such modes (docs/models/mpm.md, \"Null-space modes\")",
+      above_since_, t, 100.0 * kNullSpaceShareLimit, 100.0 * share, grid.particles_per_cell, grid.flip);
+}
+
+}  // namespace pdmpm::sim
