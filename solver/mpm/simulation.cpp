@@ -909,6 +909,7 @@ void Simulation<D>::step(double dt) {
     update_stress(grid_.velocity_new, dt);
     phase_seconds_.stress += clock.lap();
   }
+  remap_current_ = musl;
 
   for (Index p : active_)
     if (failed_this_step_[p]) newly_failed_.push_back(p);
@@ -1223,7 +1224,7 @@ Vec<D> Simulation<D>::momentum() const {
 
 template <int D>
 std::optional<double> Simulation<D>::grid_kinetic_energy() const {
-  if (settings_.scheme != UpdateScheme::musl || steps_ == 0) return std::nullopt;
+  if (!remap_current_) return std::nullopt;
   return sum_over_nodes<1>([&](Index i) {
     const double m = grid_.mass[i];
     return Eigen::Matrix<double, 1, 1>(m > 0.0 ? boundary_.real_share(i) * 0.5 * grid_.momentum[i].squaredNorm() / m

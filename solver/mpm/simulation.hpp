@@ -102,8 +102,10 @@ class Simulation {
   // The particles' kinetic energy as the grid sees it after the last step: Σ ½|p_I|²/m_I
   // of MUSL's remapped nodal momenta (≤ energies().kinetic by Cauchy–Schwarz). The rest is
   // kinetic energy in velocity modes the particle-to-grid map cannot see (its null space):
-  // FLIP keeps such modes and the grid does not restrain them. nullopt before the first step
-  // and for USF/USL, whose nodal momenta after a step are not the current velocities'.
+  // FLIP keeps such modes and the grid does not restrain them. For the particles the last
+  // step integrated (a hybrid's conversions change them: not for hybrid runs); nullopt
+  // before the first step (and after a restart) and for USF/USL, whose nodal momenta after a
+  // step are not the current velocities'.
   std::optional<double> grid_kinetic_energy() const;
   // Force each boundary exerted on the body during the last step (N; volumes carry
   // thickness / cross-section), in the order of settings.boundaries.
@@ -216,6 +218,7 @@ class Simulation {
   GridBoundary<D> boundary_;
   ParticleState<D> state_;
   std::vector<Index> active_;
+  bool remap_current_ = false;  // the grid's momenta are MUSL's remap of the last step
   // Points, their scatter schedule and their stencils (in schedule order) for a step.
   struct ScatterSet {
     ScatterSchedule<D> schedule;

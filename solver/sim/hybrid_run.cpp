@@ -11,7 +11,6 @@
 #include "solver/sim/frame_fields.hpp"
 #include "solver/sim/output_schedule.hpp"
 #include "solver/sim/run_metrics.hpp"
-#include "solver/sim/null_space_watch.hpp"
 #include "solver/sim/run_recorder.hpp"
 #include "solver/time/stable_step.hpp"
 
@@ -37,10 +36,6 @@ class HybridRun {
   const std::vector<hybrid::CrackTip<D>>& tips();
   std::vector<Vec<D>> reactions() const;
   double max_speed() const;
-  double null_space_kinetic(const mpm::Energies& grid) const {
-    const std::optional<double> seen = h_.mpm().grid_kinetic_energy();
-    return seen ? grid.kinetic - *seen : 0.0;
-  }
   nlohmann::json summary() const;
   void state(core::StateArchive& a);  // what a checkpoint holds of this run
 
@@ -49,7 +44,6 @@ class HybridRun {
   hybrid::Simulation<D>& h_;
   core::Particles<D>& p_;
   RunRecorder rec_;
-  NullSpaceWatch null_space_;
 
   double dt_ = 0.0, dt_pd_ = 0.0, dt_cfl0_ = 0.0, end_time_ = 0.0;
   std::int64_t total_steps_ = 0, steps_done_ = 0, energy_every_ = 1;
@@ -115,7 +109,6 @@ void HybridRun<D>::start_outputs() {
   for (int a = 0; a < D; ++a) cols.push_back(std::string("momentum_") + axis_name(a));
   cols.push_back("max_damage");
   cols.push_back("max_speed");
-  cols.push_back("null_space_kinetic_energy");  // of the grid's particles (null_space_watch.hpp)
   for (const auto& b : scene_.boundaries)
     if (b.kind != io::BoundaryKind::traction)
       for (int a = 0; a < D; ++a) cols.push_back("reaction_" + b.name + "_" + axis_name(a));
@@ -196,7 +189,6 @@ void HybridRun<D>::history_row(std::int64_t step, double t) {
   const auto phi = pd::local_damage(s_.pd.system);
   row.push_back(phi.empty() ? 0.0 : *std::max_element(phi.begin(), phi.end()));
   row.push_back(max_speed());
-  row.push_back(null_space_kinetic(g));
   for (const Vec<D>& r : reactions())
     for (int a = 0; a < D; ++a) row.push_back(r[a]);
   add_probe_values<D>(s_.pd.probes, p_.u, p_.v, row);
@@ -299,9 +291,6 @@ bool HybridRun<D>::stable(std::int64_t step, double t) {
     m << "unstable at step " << step << " (t = " << t << " s): particles moved so fast that the step " << dt_
       << " s exceeds the grid's CFL limit h / max(c + |v|) = " << cfl << " s; lower time.safety_factor or time.dt";
   } else {
-    const GridSampling sampling{h_.mpm().cell_size() / scene_.spacing, h_.mpm().settings().flip};
-    if (auto w = null_space_.check(g.kinetic, g.kinetic - null_space_kinetic(g), g.strain, step, t, sampling))
-      rec_.warn("null_space", *w);
     return true;
   }
   rec_.stop("unstable", m.str());
