@@ -50,7 +50,7 @@ class MpmRun {
   // Whole-body values: over every process of a distributed run (each holds its own points).
   std::int64_t everywhere(std::int64_t local) const { return comm_ ? comm_->sum(local) : local; }
   double largest(double local) const { return comm_ ? comm_->max(local) : local; }
-  // MUSL's nodal momenta after a step are the current velocities' (null_space_watch.hpp).
+  // MUSL's nodal momenta after a step are the current velocities' (grid_kinetic_energy).
   bool musl() const { return s_.settings.scheme == mpm::UpdateScheme::musl; }
   double null_space_kinetic(const mpm::Energies& e) const {
     const std::optional<double> grid = sim_.grid_kinetic_energy();
@@ -198,9 +198,9 @@ bool MpmRun<D>::stable(std::int64_t step, double t) {
     m << "unstable at step " << step << " (t = " << t << " s): particles moved so fast that the step " << dt_
       << " s exceeds the CFL limit h / max(c + |v|) = " << cfl << " s; lower time.safety_factor or time.dt";
   } else {
-    if (musl())
-      if (auto w = null_space_.check(e.kinetic, e.kinetic - null_space_kinetic(e), e.strain, step, t, sampling()))
-        rec_.warn("null_space", *w);
+    if (const std::optional<double> grid = sim_.grid_kinetic_energy())
+      if (auto w = null_space_.check(e.kinetic, *grid, e.strain, step, t, sampling()))
+        rec_.warn("null_space", *w, step, t);
     return true;
   }
   rec_.stop("unstable", m.str());

@@ -15,7 +15,7 @@ namespace pdmpm::sim {
 
 // Warn when the share stays above this limit ... (stable plates of docs/models/mpm.md: at
 // most 0.21 once their start-up has passed; the unstable one crosses it about 5 µs before its
-// kinetic energy grows fifty-fold, and stays above)
+// kinetic energy grows forty-fold, and stays above)
 inline constexpr double kNullSpaceShareLimit = 0.25;
 // ... for this many steps: a grip that starts at full speed puts a quarter of the first
 // steps' kinetic energy in the null space for a few steps (measured: 10 steps).
@@ -38,6 +38,7 @@ class NullSpaceWatch {
 
  private:
   std::int64_t above_since_ = -1;  // the first step of the current run of checks above the limit
+  double above_since_t_ = 0.0;     // its time
 };
 
 }  // namespace pdmpm::sim

@@ -192,10 +192,10 @@ void RunRecorder::stop(std::string status, std::string message) {
   message_ = std::move(message);
 }
 
-void RunRecorder::warn(const std::string& key, const std::string& text) {
-  for (const auto& w : warnings_)
-    if (w.first == key) return;
-  warnings_.emplace_back(key, text);
+void RunRecorder::warn(const std::string& key, const std::string& text, std::int64_t step, double t) {
+  for (const Warning& w : warnings_)
+    if (w.key == key) return;
+  warnings_.push_back({key, text, step, t});
   if (writer()) std::cerr << "\npdmpm: warning: " << text << "\n";
 }
 
@@ -206,7 +206,8 @@ RunResult RunRecorder::finish(std::int64_t steps_done, double t, std::int64_t co
   history_.reset();
   const double wall = earlier_wall_seconds_ + seconds_since(t0_);
   nlohmann::json warnings = nlohmann::json::array();
-  for (const auto& [key, text] : warnings_) warnings.push_back({{"key", key}, {"text", text}});
+  for (const Warning& w : warnings_)
+    warnings.push_back({{"key", w.key}, {"step", w.step}, {"time", w.time}, {"text", w.text}});
   nlohmann::json summary = std::move(method_keys);
   summary.update(
       {{"scene", scene_.id},

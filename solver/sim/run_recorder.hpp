@@ -20,7 +20,6 @@
 #include <functional>
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -107,9 +106,10 @@ class RunRecorder {
 
   const std::string& message() const { return message_; }
 
-  // A condition the user should know of that does not stop the run: printed once per key
-  // on stderr (by the writing process) and listed in summary.json "warnings".
-  void warn(const std::string& key, const std::string& text);
+  // A condition the user should know of that does not stop the run, found at `step` (time
+  // t): printed once per key on stderr (by the writing process) and listed in summary.json
+  // "warnings" with its key, step and time.
+  void warn(const std::string& key, const std::string& text, std::int64_t step, double t);
 
   // Closes the outputs, writes summary.json — the method's keys plus the keys
   // every run has — and commits the directory. Exit code 0 when completed, 3 otherwise.
@@ -130,7 +130,12 @@ class RunRecorder {
   std::vector<std::int64_t> frame_steps_;
   std::size_t next_frame_ = 0;
   std::string status_ = "completed", message_;
-  std::vector<std::pair<std::string, std::string>> warnings_;  // key, text
+  struct Warning {
+    std::string key, text;
+    std::int64_t step = 0;
+    double time = 0.0;
+  };
+  std::vector<Warning> warnings_;
   StateFn state_;
   std::string no_checkpoint_reason_;
   std::chrono::steady_clock::time_point last_checkpoint_;

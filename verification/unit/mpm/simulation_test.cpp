@@ -325,12 +325,6 @@ TEST(MpmSimulation, DuctileFailureAtTheCriterionStrain) {
   }
 }
 
-}  // namespace
-}  // namespace pdmpm::mpm
-
-namespace pdmpm::mpm {
-namespace {
-
 // The kinetic energy the grid sees after a step (MUSL's remap, null_space_watch.hpp): all
 // of a uniform motion's, almost none of rows moving in antiphase with one particle per cell
 // (each interior node sits midway between two rows and their momenta cancel there).

@@ -19,7 +19,7 @@ TEST(NullSpaceWatch, WarnsOnlyOnceTheShareHasStayedHighForTheSustainTime) {
     EXPECT_FALSE(check(w, 0.5, step)) << step;
   const auto warning = check(w, 0.5, 20 + kNullSpaceSustainSteps);
   ASSERT_TRUE(warning);
-  EXPECT_NE(warning->find("since step 20 "), std::string::npos) << *warning;
+  EXPECT_NE(warning->find("from step 20 (t = 2e-08 s) to step 120 (t = 1.2e-07 s)"), std::string::npos) << *warning;
   EXPECT_NE(warning->find("50 % now"), std::string::npos) << *warning;
   EXPECT_NE(warning->find("cell_factor"), std::string::npos) << *warning;
 }

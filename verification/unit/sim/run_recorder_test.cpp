@@ -103,15 +103,17 @@ TEST(RunRecorder, AWarningIsListedOncePerKeyAndTheRunGoesOn) {
   RunRecorder rec(f.scene, f.options);
   rec.plan(2, 0.1);
   rec.start({"step"}, 2, 0.2);
-  rec.warn("null_space", "first text");
-  rec.warn("null_space", "the same condition again");
-  rec.warn("other", "another condition");
+  rec.warn("null_space", "first text", 1, 0.1);
+  rec.warn("null_space", "the same condition again", 2, 0.2);
+  rec.warn("other", "another condition", 2, 0.2);
   const auto r = rec.finish(2, 0.2, 0, 2, {{"solver", "fake"}, {"dimension", 2}});
   EXPECT_EQ(r.exit_code, 0);
   const auto& w = r.summary["warnings"];
   ASSERT_EQ(w.size(), 2u) << w.dump();
   EXPECT_EQ(w[0]["key"], "null_space");
   EXPECT_EQ(w[0]["text"], "first text");
+  EXPECT_EQ(w[0]["step"], 1);
+  EXPECT_EQ(w[0]["time"], 0.1);
   EXPECT_EQ(w[1]["key"], "other");
 }
 
