@@ -60,11 +60,20 @@ inline m8 visited_lanes(const FamilyView& fam, BondIndex b0, int count) {
   return Set == Lanes::live ? live_lanes(fam, b0, count) : state_lanes(fam, b0, count);
 }
 
+// Whether a block has a lane of the set, from the flag bytes alone (no lane masks built).
+template <Lanes Set>
+inline bool any_visited(const FamilyView& fam, BondIndex b0, int count) {
+  if (Set == Lanes::live || !fam.state_only_bonds) return any_zero_byte(fam.broken + b0, count);
+  return any_zero_byte(fam.broken + b0, count, kStateOnlyFlag);
+}
+
 // Whether a block has a live bond. A block without one adds nothing to any sum (every
 // kernel masks its lanes with `live`) and is skipped before its gather: in a hybrid a
 // transition particle's family is mostly bonds to other transition particles, which
 // belong to the grid (pd::bond_active), and a crack face's blocks are mostly broken.
-inline bool any_live(const FamilyView& fam, BondIndex b0, int count) { return any(live_lanes(fam, b0, count)); }
+inline bool any_live(const FamilyView& fam, BondIndex b0, int count) {
+  return any_visited<Lanes::live>(fam, b0, count);
+}
 
 // One block of up to eight bonds of particle i, gathered into lanes.
 template <int D>
@@ -128,7 +137,7 @@ __attribute__((always_inline)) inline void for_each_block(const Args& a, Index i
     const double* ui = a.u + D * i;
     for (BondIndex b0 = begin; b0 < end; b0 += lanes) {
       const int count = static_cast<int>(std::min<BondIndex>(lanes, end - b0));
-      if (!any(visited_lanes<Set>(fam, b0, count))) continue;
+      if (!any_visited<Set>(fam, b0, count)) continue;
       B.template gather<Set>(mode, fam, a.table, a.u, ui, a.volume, b0, count);
       block(mode, b0, count);
     }

@@ -58,15 +58,19 @@ inline m8 zero_bytes_to_lanes(__m128i bytes) {
   return reinterpret_cast<m8>(_mm512_maskz_cvtepu8_epi64(0xFF, bytes)) == 0;
 #else
   const __m128i z = _mm_cmpeq_epi8(bytes, _mm_setzero_si128());  // 0xFF where a byte is 0
+#if defined(__AVX2__)
+  // Written as two whole 256-bit halves: written in 128-bit quarters, the 256-bit reads
+  // that follow could not be forwarded from the stores (a stall per block on AMD Zen 3).
+  union {
+    m8 v;
+    __m256i h[2];
+  } r{};
+  r.h[0] = _mm256_cvtepi8_epi64(z), r.h[1] = _mm256_cvtepi8_epi64(_mm_srli_si128(z, 4));
+#else
   union {
     m8 v;
     __m128i q[4];
   } r{};
-#if defined(__AVX2__)
-  const __m256i lo = _mm256_cvtepi8_epi64(z), hi = _mm256_cvtepi8_epi64(_mm_srli_si128(z, 4));
-  r.q[0] = _mm256_castsi256_si128(lo), r.q[1] = _mm256_extracti128_si256(lo, 1);
-  r.q[2] = _mm256_castsi256_si128(hi), r.q[3] = _mm256_extracti128_si256(hi, 1);
-#else
   const __m128i w = _mm_unpacklo_epi8(z, z), d0 = _mm_unpacklo_epi16(w, w), d1 = _mm_unpackhi_epi16(w, w);
   r.q[0] = _mm_unpacklo_epi32(d0, d0), r.q[1] = _mm_unpackhi_epi32(d0, d0);
   r.q[2] = _mm_unpacklo_epi32(d1, d1), r.q[3] = _mm_unpackhi_epi32(d1, d1);
@@ -81,8 +85,18 @@ inline m8 lanes_zero(const std::uint8_t* bytes) {
 
 // The same for the bytes with the bits of `ignored` cleared.
 inline m8 lanes_zero_ignoring(const std::uint8_t* bytes, std::uint8_t ignored) {
-  const __m128i kept = _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored)));
-  return zero_bytes_to_lanes(_mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)), kept));
+  return zero_bytes_to_lanes(_mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)),
+                                           _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored)))));
+}
+
+// Whether any of the first `count` bytes, with the bits of `ignored` cleared, is 0: the
+// same answer as any(lanes_zero_ignoring(…) & first_lanes(count)) from one byte compare,
+// without building lane masks (below AVX-512 those go through the stack).
+inline bool any_zero_byte(const std::uint8_t* bytes, int count, std::uint8_t ignored = 0) {
+  const __m128i b = _mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)),
+                                  _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored))));
+  const int zero = _mm_movemask_epi8(_mm_cmpeq_epi8(b, _mm_setzero_si128()));
+  return (zero & ((1 << count) - 1)) != 0;
 }
 
 }  // namespace pdmpm::pd::kernels::PDMPM_SIMD_NS

@@ -97,8 +97,21 @@ inline m8 first_lanes(int count) {
 inline bool any(m8 mask) {
 #if defined(__AVX512F__)
   return _mm512_test_epi64_mask(reinterpret_cast<__m512i>(mask), reinterpret_cast<__m512i>(mask)) != 0;
+#elif defined(__AVX2__)
+  // In registers: read lane by lane, the mask went through the stack into eight scalar loads.
+  union {
+    m8 v;
+    __m256i h[2];
+  } u{mask};
+  const __m256i o = _mm256_or_si256(u.h[0], u.h[1]);
+  return !_mm256_testz_si256(o, o);
 #else
-  return ((mask[0] | mask[1]) | (mask[2] | mask[3])) | ((mask[4] | mask[5]) | (mask[6] | mask[7]));
+  union {
+    m8 v;
+    __m128i q[4];
+  } u{mask};
+  const __m128i o = _mm_or_si128(_mm_or_si128(u.q[0], u.q[1]), _mm_or_si128(u.q[2], u.q[3]));
+  return _mm_movemask_epi8(_mm_cmpeq_epi32(o, _mm_setzero_si128())) != 0xFFFF;
 #endif
 }
 
