@@ -27,8 +27,8 @@ __attribute__((always_inline)) inline void gather_rows_narrow(const double* base
                 base[S * idx[4] + c], base[S * idx[5] + c], base[S * idx[6] + c], base[S * idx[7] + c]};
 }
 
-// Reads four doubles of each row (with AVX-512): base + S idx[l] + 3 must be
-// readable even when C < 4.
+// Reads four doubles of each row (with AVX-512, and with AVX2 for C > 2; two for C ≤ 2):
+// base + S idx[l] + 3 must be readable even when C < 4.
 template <int C, int S, typename I>
 __attribute__((always_inline)) inline void gather_rows_wide(const double* base, const I* idx, d8 out[C]) {
   static_assert(C >= 1 && C <= 4, "rows of at most four doubles");
@@ -45,6 +45,34 @@ __attribute__((always_inline)) inline void gather_rows_wide(const double* base, 
   if constexpr (C > 1) out[1] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t1, even, t3));
   if constexpr (C > 2) out[2] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t0, odd, t2));
   if constexpr (C > 3) out[3] = reinterpret_cast<d8>(_mm512_permutex2var_pd(t1, odd, t3));
+#elif defined(__AVX2__)
+  // Four rows at a time: each row one load, the 4 × 4 (or 4 × 2) block transposed with
+  // unpacks and lane swaps, each lane vector written as two whole 256-bit halves.
+  union Lanes8 {
+    d8 v;
+    __m256d h[2];
+  };
+  Lanes8 col[C];
+  for (int half = 0; half < 2; ++half) {
+    const I* q = idx + 4 * half;
+    if constexpr (C <= 2) {  // (x y) rows: (x₀ y₀ x₂ y₂) and (x₁ y₁ x₃ y₃), then unpacked
+      auto row = [&](int l) { return _mm_loadu_pd(base + S * q[l]); };
+      const __m256d a = _mm256_insertf128_pd(_mm256_castpd128_pd256(row(0)), row(2), 1);
+      const __m256d b = _mm256_insertf128_pd(_mm256_castpd128_pd256(row(1)), row(3), 1);
+      col[0].h[half] = _mm256_unpacklo_pd(a, b);
+      if constexpr (C > 1) col[1].h[half] = _mm256_unpackhi_pd(a, b);
+    } else {
+      auto row = [&](int l) { return _mm256_loadu_pd(base + S * q[l]); };
+      const __m256d r0 = row(0), r1 = row(1), r2 = row(2), r3 = row(3);
+      const __m256d t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);  // columns 0,2 / 1,3 of rows 0,1
+      const __m256d t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);  // the same of rows 2,3
+      col[0].h[half] = _mm256_permute2f128_pd(t0, t2, 0x20);
+      col[1].h[half] = _mm256_permute2f128_pd(t1, t3, 0x20);
+      col[2].h[half] = _mm256_permute2f128_pd(t0, t2, 0x31);
+      if constexpr (C > 3) col[3].h[half] = _mm256_permute2f128_pd(t1, t3, 0x31);
+    }
+  }
+  for (int c = 0; c < C; ++c) out[c] = col[c].v;
 #else
   gather_rows_narrow<C, S>(base, idx, out);
 #endif
