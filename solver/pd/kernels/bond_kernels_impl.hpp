@@ -213,10 +213,10 @@ std::int64_t pmb(const PmbArgs& a) {
       const m8 acts = a.after_force ? B.live : B.live & ~breaks;
       const d8 cw = c * B.wv;
       const d8 coef = cw * g.num / ((g.len + B.L) * g.len * B.L);  // c ω β V s / |y|
-      for (int d = 0; d < D; ++d) acc[d] += keep(acts, coef * g.y[d]);
+      for (int d = 0; d < D; ++d) add_to(acc[d], keep(acts, coef * g.y[d]));
       if constexpr (Energy) {
         const d8 s = g.num / ((g.len + B.L) * B.L);
-        w += keep(acts, 0.25 * cw * s * s * B.L);  // ½ Σ_j ½ c ω β s² |ξ| V_j
+        add_to(w, keep(acts, 0.25 * cw * s * s * B.L));  // ½ Σ_j ½ c ω β s² |ξ| V_j
       }
       newly += mark_broken(fam, b0, count, breaks);
     });
@@ -242,7 +242,7 @@ std::int64_t lps_dilatation(const LpsArgs& a) {
       const m8 breaks =
           breaking & breakable_lanes(fam, B.live, b0, count) & reaches_critical_stretch(g.num, g.len, B.L, s0, false);
       const m8 acts = B.live & ~breaks;
-      acc += keep(acts, B.wv * B.L * g.num / (g.len + B.L));  // ω β |ξ| e V_j
+      add_to(acc, keep(acts, B.wv * B.L * g.num / (g.len + B.L)));  // ω β |ξ| e V_j
       newly += mark_broken(fam, b0, count, breaks);
     });
     a.theta[i] = a.m[i] > 0.0 ? a.d * lane_sum(acc) / a.m[i] : 0.0;
@@ -274,10 +274,10 @@ std::int64_t lps_forces(const LpsArgs& a) {
       const Deformed<D> g = deform<D>(B);
       const d8 coef =
           B.wv * (B.L * (alpha_i + ab_j[0]) * (g.len + B.L) + (beta_i + ab_j[1]) * g.num) / ((g.len + B.L) * g.len);
-      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
+      for (int d = 0; d < D; ++d) add_to(acc[d], keep(B.live, coef * g.y[d]));
       if constexpr (Energy) {
         const d8 ed = g.num / (g.len + B.L) - a.gamma * theta_i * B.L;  // deviatoric extension
-        dev += keep(B.live, B.wv * ed * ed);
+        add_to(dev, keep(B.live, B.wv * ed * ed));
       }
       // Break-after-force rule: i's side only, which no other particle reads in this pass.
       newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
@@ -325,8 +325,8 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
         const m8 acts = B.live & ~breaks;
         const d8 e = g.num / (g.len + B.L);
         const d8 moment = keep(acts, B.wv * B.L * e);  // ω β |ξ| e V_j
-        acc += moment;
-        acc_c += per_offset(p.shell, fam.shape + b0, count) * moment;
+        add_to(acc, moment);
+        add_to(acc_c, per_offset(p.shell, fam.shape + b0, count) * moment);
         __builtin_memcpy(row + (b0 - begin), &e, sizeof e);
         // p_n of the block, read by the second sweep: the load missed the cache there (a
         // stream the hardware prefetcher does not follow among the gathers).
@@ -353,7 +353,7 @@ std::int64_t lps_plastic_extension(const LpsPlasticArgs& p) {
           wvc *= d8{a.volume[j[0]], a.volume[j[1]], a.volume[j[2]], a.volume[j[3]],
                     a.volume[j[4]], a.volume[j[5]], a.volume[j[6]], a.volume[j[7]]};
         const d8 eps = load8(row + (b0 - begin)) - gt * L - load8(p.plastic_extension + b0);
-        n2 += keep(live, wvc * eps * eps);
+        add_to(n2, keep(live, wvc * eps * eps));
         __builtin_memcpy(row + (b0 - begin), &eps, sizeof eps);
       }
       p.norm2[i] = lane_sum(n2);
@@ -398,8 +398,8 @@ std::int64_t lps_plastic_forces(const LpsPlasticArgs& p) {
       const d8 eps_j = e - row_j[2] * B.L - load8(p.reverse_plastic + b0);
       const d8 t = B.L * (mu_i + row_j[0]) + c * (s_i * eps_i + row_j[1] * eps_j);
       const d8 coef = B.wv * t / g.len;
-      for (int d = 0; d < D; ++d) acc[d] += keep(B.live, coef * g.y[d]);
-      if constexpr (Energy) dev += keep(B.live, B.wv * c * eps_i * eps_i);
+      for (int d = 0; d < D; ++d) add_to(acc[d], keep(B.live, coef * g.y[d]));
+      if constexpr (Energy) add_to(dev, keep(B.live, B.wv * c * eps_i * eps_i));
       // Break-after-force rule: i's side only, which no other particle reads in this pass.
       newly += mark_broken(fam, b0, count, breaking & B.live & reaches_critical_stretch(g.num, g.len, B.L, a.s0, true));
     });

@@ -79,6 +79,27 @@ inline m8 compare_greater(d8 a, d8 b) {
 inline m8 greater(d8 a, d8 b) { return compare_greater<false>(a, b); }
 inline m8 greater_equal(d8 a, d8 b) { return compare_greater<true>(a, b); }
 
+// acc += x, lane by lane. Below AVX-512 an eight-lane accumulator that a bond loop's
+// lambda updates was written back piecewise (8- and 16-byte moves) and read whole by the
+// next block's add, a store the load cannot be forwarded from (on AMD Zen 3 the AVX2 LPS
+// kernels' largest stall); here each register-wide part is added in place.
+inline void add_to(d8& acc, d8 x) {
+#if defined(__AVX512F__)
+  acc += x;
+#else
+#if defined(__AVX__)
+  constexpr int register_bytes = 32;
+#else
+  constexpr int register_bytes = 16;
+#endif
+  typedef double part __attribute__((vector_size(register_bytes), may_alias));
+  constexpr int parts = 64 / register_bytes;
+  part* a = reinterpret_cast<part*>(&acc);
+  const part* b = reinterpret_cast<const part*>(&x);
+  for (int k = 0; k < parts; ++k) a[k] += b[k];
+#endif
+}
+
 // Lane-wise a where mask is set, else +0.0: a bitwise and, since mask lanes are
 // all ones or all zeros (the vector ?: of GCC 12 is lowered lane by lane).
 inline d8 keep(m8 mask, d8 a) { return reinterpret_cast<d8>(reinterpret_cast<m8>(a) & mask); }
