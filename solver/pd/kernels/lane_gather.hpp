@@ -111,19 +111,22 @@ inline m8 lanes_zero(const std::uint8_t* bytes) {
   return zero_bytes_to_lanes(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)));
 }
 
+// Eight bytes with the bits of `ignored` cleared.
+inline __m128i kept_bytes(const std::uint8_t* bytes, std::uint8_t ignored) {
+  const __m128i kept = _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored)));
+  return _mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)), kept);
+}
+
 // The same for the bytes with the bits of `ignored` cleared.
 inline m8 lanes_zero_ignoring(const std::uint8_t* bytes, std::uint8_t ignored) {
-  return zero_bytes_to_lanes(_mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)),
-                                           _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored)))));
+  return zero_bytes_to_lanes(kept_bytes(bytes, ignored));
 }
 
 // Whether any of the first `count` bytes, with the bits of `ignored` cleared, is 0: the
 // same answer as any(lanes_zero_ignoring(…) & first_lanes(count)) from one byte compare,
 // without building lane masks (below AVX-512 those go through the stack).
 inline bool any_zero_byte(const std::uint8_t* bytes, int count, std::uint8_t ignored = 0) {
-  const __m128i b = _mm_and_si128(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(bytes)),
-                                  _mm_set1_epi8(static_cast<char>(static_cast<std::uint8_t>(~ignored))));
-  const int zero = _mm_movemask_epi8(_mm_cmpeq_epi8(b, _mm_setzero_si128()));
+  const int zero = _mm_movemask_epi8(_mm_cmpeq_epi8(kept_bytes(bytes, ignored), _mm_setzero_si128()));
   return (zero & ((1 << count) - 1)) != 0;
 }
 
