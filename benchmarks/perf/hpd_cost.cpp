@@ -4,23 +4,13 @@
 #include <omp.h>
 
 #include "benchmarks/bench_bodies.hpp"
+#include "benchmarks/perf/force_call_time.hpp"
 #include "benchmarks/perf/perf_output.hpp"
 #include "benchmarks/perf/stats.hpp"
 #include "solver/pd/hpd.hpp"
 #include "solver/pd/lps.hpp"
 
 namespace pdmpm::perf {
-namespace {
-
-// Seconds per evaluation, averaged over `calls` after one warm-up call.
-double seconds_per_call(pd::Model<3>& model, pd::System<3>& sys, int calls) {
-  model.compute_forces(sys, {});
-  const double t0 = omp_get_wtime();
-  for (int k = 0; k < calls; ++k) model.compute_forces(sys, {});
-  return (omp_get_wtime() - t0) / calls;
-}
-
-}  // namespace
 
 nlohmann::json hpd_cost(const Options& o) {
   // 8³ sites per refine step, at most 16³: the nD law stores ~0.4 MB of sub-horizon per particle
@@ -42,9 +32,9 @@ nlohmann::json hpd_cost(const Options& o) {
   axial.initialise(axial_sys);
   std::vector<double> t_lps, t_nd, t_axial;
   for (int r = 0; r < o.reps; ++r) {
-    t_lps.push_back(seconds_per_call(lps, sys, o.kernel_calls));
-    t_nd.push_back(seconds_per_call(nd, sys, o.kernel_calls));
-    t_axial.push_back(seconds_per_call(axial, axial_sys, o.kernel_calls));
+    t_lps.push_back(seconds_per_force_call(lps, sys, o.kernel_calls));
+    t_nd.push_back(seconds_per_force_call(nd, sys, o.kernel_calls));
+    t_axial.push_back(seconds_per_force_call(axial, axial_sys, o.kernel_calls));
     fmt::print("  rep {}: lps {:.3g} s, hpd linear_elastic {:.3g} s, hpd axial_1d {:.3g} s\n", r + 1, t_lps.back(),
                t_nd.back(), t_axial.back());
   }

@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include "benchmarks/bench_bodies.hpp"
+#include "benchmarks/perf/force_call_time.hpp"
 #include "benchmarks/perf/perf_output.hpp"
 #include "benchmarks/perf/stats.hpp"
 #include "solver/pd/lps.hpp"
@@ -11,16 +12,6 @@
 
 namespace pdmpm::perf {
 namespace {
-
-// Seconds per evaluation, averaged over `calls` after one warm-up call. The plastic
-// model is never accepted: every call starts from the same committed state, as the
-// first trial of a time step does.
-double seconds_per_call(pd::Model<3>& model, pd::System<3>& sys, int calls) {
-  model.compute_forces(sys, {});
-  const double t0 = omp_get_wtime();
-  for (int k = 0; k < calls; ++k) model.compute_forces(sys, {});
-  return (omp_get_wtime() - t0) / calls;
-}
 
 // Seconds of accept() after an evaluation, averaged over `calls`: committing a step where
 // every particle flowed (the plastic state, and the force pass's copy of each reverse
@@ -59,9 +50,9 @@ nlohmann::json plastic_cost(const Options& o) {
   pd::LpsPlastic<3> accepting;
   accepting.initialise(accepting_sys);
   for (int r = 0; r < o.reps; ++r) {
-    t_lps.push_back(seconds_per_call(lps, elastic_sys, o.kernel_calls));
-    t_flow.push_back(seconds_per_call(flowing, flowing_sys, o.kernel_calls));
-    t_range.push_back(seconds_per_call(elastic_range, elastic_range_sys, o.kernel_calls));
+    t_lps.push_back(seconds_per_force_call(lps, elastic_sys, o.kernel_calls));
+    t_flow.push_back(seconds_per_force_call(flowing, flowing_sys, o.kernel_calls));
+    t_range.push_back(seconds_per_force_call(elastic_range, elastic_range_sys, o.kernel_calls));
     t_accept.push_back(seconds_per_accept(accepting, accepting_sys, o.kernel_calls));
     fmt::print("  rep {}: lps {:.3g} s, lps_plastic flowing {:.3g} s, elastic range {:.3g} s\n", r + 1, t_lps.back(),
                t_flow.back(), t_range.back());
