@@ -22,6 +22,12 @@ void velocity_gradient_scalar(DeformationLanes& out, const Stencil<2>* stencil, 
   }
 }
 
+// A short group's lanes past n repeat its last particle's L.
+void repeat_last_particle(DeformationLanes& out, int n) {
+  for (int l = n; l < kDeformationLanes; ++l)
+    out.l00[l] = out.l00[n - 1], out.l10[l] = out.l10[n - 1], out.l01[l] = out.l01[n - 1], out.l11[l] = out.l11[n - 1];
+}
+
 // Per node ∇S = (∂S₀ᵢ S₁ⱼ, ∂S₁ⱼ S₀ᵢ); v_I ∇S_Iᵀ's column 0 is v_I ∂S/∂x (its x, y in a
 // pair), column 1 v_I ∂S/∂y; each pair is added node by node as the scalar sum adds.
 __attribute__((target("avx512f"))) void velocity_gradient_avx512(DeformationLanes& out, const Stencil<2>* stencil,
@@ -43,8 +49,25 @@ __attribute__((target("avx512f"))) void velocity_gradient_avx512(DeformationLane
     }
     out.l00[l] = cols[0], out.l10[l] = cols[1], out.l01[l] = cols[2], out.l11[l] = cols[3];
   }
-  for (int l = n; l < kDeformationLanes; ++l)  // a short group repeats its last particle
-    out.l00[l] = out.l00[n - 1], out.l10[l] = out.l10[n - 1], out.l01[l] = out.l01[n - 1], out.l11[l] = out.l11[n - 1];
+  repeat_last_particle(out, n);
+}
+
+// The same below AVX-512, a row as a 256-bit and a 128-bit register (Row2, stencil_row.hpp).
+__attribute__((target("avx2"))) void velocity_gradient_avx2(DeformationLanes& out, const Stencil<2>* stencil, int n,
+                                                            const Vec<2>* vg, Index row_stride) {
+  for (int l = 0; l < n; ++l) {
+    const Stencil<2>& st = stencil[l];
+    const Row2 w0 = per_node(st.w[0]), d0 = per_node(st.dw[0]);
+    const Index base = st.first[0] + st.first[1] * row_stride;
+    __m256d cols = _mm256_setzero_pd();  // L's columns 0 and 1: L00, L10, L01, L11
+    for (int j = 0; j < 3; ++j) {
+      const Row2 v = load_row(vg[base + j * row_stride].data());
+      const Row2 c0 = mul(v, times(d0, st.w[1][j])), c1 = mul(v, times(w0, st.dw[1][j]));
+      for (int i = 0; i < 3; ++i) cols = _mm256_add_pd(cols, node_pairs(c0, c1, i));
+    }
+    out.l00[l] = cols[0], out.l10[l] = cols[1], out.l01[l] = cols[2], out.l11[l] = cols[3];
+  }
+  repeat_last_particle(out, n);
 }
 
 // The reference: Simulation<3>::velocity_gradient's sum, L(a, b) += v_a g_b node by node.
@@ -102,8 +125,8 @@ Mat<3> velocity_gradient_rows3(const Stencil<3>& stencil, const Vec<3>* grid_vel
 }
 
 std::vector<LaneVariant<VelocityGradientLanesFunction>> velocity_gradient_lanes_variants() {
-  // No AVX2 or SSE2 rows: those machines run the scalar reference.
-  return lane_variants<VelocityGradientLanesFunction>(velocity_gradient_scalar, velocity_gradient_scalar,
+  // No SSE2 rows: that machine runs the scalar reference.
+  return lane_variants<VelocityGradientLanesFunction>(velocity_gradient_scalar, velocity_gradient_avx2,
                                                       velocity_gradient_avx512);
 }
 

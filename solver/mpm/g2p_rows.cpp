@@ -89,6 +89,48 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
   return finite;
 }
 
+// The same below AVX-512, a row as a 256-bit and a 128-bit register (Row2, stencil_row.hpp).
+__attribute__((target("avx2"))) bool g2p_rows_avx2(const G2PArrays2& a, G2PParameters q, Index k_begin, Index k_end) {
+  const __m128d flip = _mm_set1_pd(q.flip), pic = _mm_set1_pd(1.0 - q.flip), dt = _mm_set1_pd(q.dt);
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
+    const Index p = a.order[k];
+    const Stencil<2>& st = a.stencil[k];
+    const Row2 wx = per_node(st.w[0]);
+    const Index base = st.first[0] + st.first[1] * a.row_stride;
+    __m256d sums = _mm256_setzero_pd();  // Σ S v_new and Σ S (v_new − v): x, y of each
+    Row2 w[3];                           // S of the row's nodes in their x, y lanes; the remap uses them again
+    for (int j = 0; j < 3; ++j) {
+      const Index row = base + j * a.row_stride;
+      w[j] = times(wx, st.w[1][j]);
+      const Row2 vn = load_row(a.grid_velocity_new[row].data()), vo = load_row(a.grid_velocity[row].data());
+      const Row2 c_pic = mul(w[j], vn), c_dv = mul(w[j], sub(vn, vo));
+      for (int i = 0; i < 3; ++i) sums = _mm256_add_pd(sums, node_pairs(c_pic, c_dv, i));  // as the scalar sum
+    }
+    const __m128d v_pic = _mm256_castpd256_pd128(sums), dv = _mm256_extractf128_pd(sums, 1);
+    double* vp = a.velocity[p].data();
+    double* up = a.displacement[p].data();
+    const __m128d v = _mm_add_pd(_mm_mul_pd(flip, _mm_add_pd(_mm_loadu_pd(vp), dv)), _mm_mul_pd(pic, v_pic));
+    const __m128d u = _mm_add_pd(_mm_loadu_pd(up), _mm_mul_pd(dt, v_pic));
+    _mm_storeu_pd(vp, v);
+    _mm_storeu_pd(up, u);
+    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN.
+    const __m128d zero = _mm_setzero_pd();
+    finite = finite && _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(v, v), zero)) == 3 &&
+        _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(u, u), zero)) == 3;
+    if (q.remap) {
+      const double m = a.mass[p];
+      const Row2 mv = every_node(m * v[0], m * v[1]);
+      for (int j = 0; j < 3; ++j) {
+        double* at = a.grid_momentum[base + j * a.row_stride].data();
+        store_row(at, add(load_row(at), mul(w[j], mv)));
+      }
+    }
+  }
+  return finite;
+}
+
 __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2PParameters q, Index k_begin,
                                                          Index k_end) {
   const __mmask8 xyz = 0x07;
@@ -157,8 +199,8 @@ bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin
 }
 
 std::vector<LaneVariant<G2PRowsFunction>> g2p_rows_variants() {
-  // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
-  return lane_variants<G2PRowsFunction>(g2p_rows_scalar<2>, g2p_rows_scalar<2>, g2p_rows_avx512);
+  // No SSE2 rows: that machine runs the scalar reference.
+  return lane_variants<G2PRowsFunction>(g2p_rows_scalar<2>, g2p_rows_avx2, g2p_rows_avx512);
 }
 
 bool g2p_rows(const G2PArrays2& arrays, G2PParameters parameters, Index k_begin, Index k_end) {

@@ -116,6 +116,58 @@ __attribute__((target("avx512f"))) void scatter_rows_avx512(const ScatterSource2
   }
 }
 
+// The same below AVX-512: a row's nodes 0 and 1 in a 256-bit register, node 2 in a
+// 128-bit one (Row2, stencil_row.hpp), the mass's three nodes as a pair and a scalar.
+__attribute__((target("avx2"))) void scatter_rows_avx2(const ScatterSource2& s, const ScatterTarget2& g,
+                                                       ScatterFields what, Index k_begin, Index k_end) {
+  for (Index k = k_begin; k < k_end; ++k) {
+    if (k + kPrefetchAhead < k_end) prefetch_scattered(s, what, s.order[k + kPrefetchAhead]);
+    const Index p = s.order[k];
+    const Stencil<2>& st = s.stencil[k];
+    const double m = s.mass[p];
+    const Vec<2> v = s.velocity[p];
+    const Row2 mv = every_node(m * v[0], m * v[1]);
+    const std::array<double, 3>& x = st.w[0];
+    const __m128d wx01 = _mm_set_pd(x[1], x[0]), mass = _mm_set1_pd(m);
+    const Row2 wx = per_node(x), dwx = per_node(st.dw[0]);
+    Row2 va{}, vb{}, fe{};
+    const bool external = what.forces && what.external && carries_external_force<2>(s.external[p]);
+    if (what.forces) {
+      const double vol = s.volume[p];
+      const double v00 = vol * s.tau[0][p], v10 = vol * s.tau[1][p], v01 = vol * s.tau[2][p], v11 = vol * s.tau[3][p];
+      va = every_node(v00, v10);  // −(V τ ∇S) = −(va ∂S/∂x + vb ∂S/∂y)
+      vb = every_node(v01, v11);
+      const Vec<2> f = s.external[p];
+      fe = every_node(f[0], f[1]);
+    }
+    const Index base = st.first[0] + st.first[1] * g.row_stride;
+    for (int j = 0; j < 3; ++j) {
+      const Index row = base + j * g.row_stride;
+      const double wy = st.w[1][j];
+      const Row2 w = times(wx, wy);  // S of each node in its x, y lanes
+      if (what.mass) {
+        double* at = g.mass + row;
+        const __m128d w01 = _mm_mul_pd(wx01, _mm_set1_pd(wy));
+        _mm_storeu_pd(at, _mm_add_pd(_mm_loadu_pd(at), _mm_mul_pd(w01, mass)));
+        at[2] += x[2] * wy * m;
+      }
+      if (what.momentum) {
+        double* at = g.momentum[row].data();
+        store_row(at, add(load_row(at), mul(w, mv)));
+      }
+      if (what.forces) {
+        const Row2 gx = times(dwx, wy), gy = times(wx, st.dw[1][j]);
+        double* at = g.force_internal[row].data();
+        store_row(at, sub(load_row(at), add(mul(va, gx), mul(vb, gy))));
+        if (external) {
+          double* ate = g.force_external[row].data();
+          store_row(ate, add(load_row(ate), mul(w, fe)));
+        }
+      }
+    }
+  }
+}
+
 // A row's nine doubles: lanes 0–7 and the ninth apart (stencil_row.hpp).
 __attribute__((target("avx512f"))) void scatter_rows3_avx512(const ScatterSource3& s, const ScatterTarget3& g,
                                                              ScatterFields what, Index k_begin, Index k_end) {
@@ -188,8 +240,8 @@ void scatter_rows3(const ScatterSource3& source, const ScatterTarget3& grid, Sca
 }
 
 std::vector<LaneVariant<ScatterRowsFunction>> scatter_rows_variants() {
-  // No AVX2 or SSE2 rows yet: those machines run the scalar reference.
-  return lane_variants<ScatterRowsFunction>(scatter_rows_scalar<2>, scatter_rows_scalar<2>, scatter_rows_avx512);
+  // No SSE2 rows: that machine runs the scalar reference.
+  return lane_variants<ScatterRowsFunction>(scatter_rows_scalar<2>, scatter_rows_avx2, scatter_rows_avx512);
 }
 
 void scatter_rows(const ScatterSource2& source, const ScatterTarget2& grid, ScatterFields what, Index k_begin,

@@ -5,6 +5,8 @@
 // in the scalar sum's order.
 #include <immintrin.h>
 
+#include <array>
+
 #include "solver/core/types.hpp"
 #include "solver/mpm/shape_function.hpp"
 
@@ -15,6 +17,52 @@ namespace pdmpm::mpm {
 __attribute__((target("avx512f"), always_inline)) inline __m256d node_pairs(__m512d a, __m512d b, int i) {
   const __m512i pick = _mm512_set_epi64(0, 0, 0, 0, 9 + 2 * i, 8 + 2 * i, 1 + 2 * i, 2 * i);
   return _mm512_castpd512_pd256(_mm512_permutex2var_pd(a, pick, b));
+}
+
+// Below AVX-512 a 2D row's six doubles are nodes 0 and 1's x, y in one 256-bit register
+// and node 2's in a 128-bit one (two unmasked loads: AVX2's masked stores are slow on AMD).
+struct Row2 {
+  __m256d nodes01;
+  __m128d node2;
+};
+
+__attribute__((target("avx2"), always_inline)) inline Row2 load_row(const double* at) {
+  return {_mm256_loadu_pd(at), _mm_loadu_pd(at + 4)};
+}
+__attribute__((target("avx2"), always_inline)) inline void store_row(double* at, Row2 r) {
+  _mm256_storeu_pd(at, r.nodes01);
+  _mm_storeu_pd(at + 4, r.node2);
+}
+__attribute__((target("avx2"), always_inline)) inline Row2 add(Row2 a, Row2 b) {
+  return {_mm256_add_pd(a.nodes01, b.nodes01), _mm_add_pd(a.node2, b.node2)};
+}
+__attribute__((target("avx2"), always_inline)) inline Row2 sub(Row2 a, Row2 b) {
+  return {_mm256_sub_pd(a.nodes01, b.nodes01), _mm_sub_pd(a.node2, b.node2)};
+}
+__attribute__((target("avx2"), always_inline)) inline Row2 mul(Row2 a, Row2 b) {
+  return {_mm256_mul_pd(a.nodes01, b.nodes01), _mm_mul_pd(a.node2, b.node2)};
+}
+// The row's three per-node values (a weight) each in its node's x and y lanes.
+__attribute__((target("avx2"), always_inline)) inline Row2 per_node(const std::array<double, 3>& w) {
+  return {_mm256_set_pd(w[1], w[1], w[0], w[0]), _mm_set1_pd(w[2])};
+}
+// One x, y pair in every node's lanes.
+__attribute__((target("avx2"), always_inline)) inline Row2 every_node(double x, double y) {
+  return {_mm256_set_pd(y, x, y, x), _mm_set_pd(y, x)};
+}
+__attribute__((target("avx2"), always_inline)) inline Row2 times(Row2 a, double s) {
+  return {_mm256_mul_pd(a.nodes01, _mm256_set1_pd(s)), _mm_mul_pd(a.node2, _mm_set1_pd(s))};
+}
+// Node i's x, y of two rows side by side, (a's x, y, b's x, y), as node_pairs above.
+__attribute__((target("avx2"), always_inline)) inline __m256d node_pairs(Row2 a, Row2 b, int i) {
+  switch (i) {
+    case 0:
+      return _mm256_permute2f128_pd(a.nodes01, b.nodes01, 0x20);
+    case 1:
+      return _mm256_permute2f128_pd(a.nodes01, b.nodes01, 0x31);
+    default:
+      return _mm256_insertf128_pd(_mm256_castpd128_pd256(a.node2), b.node2, 1);
+  }
 }
 
 // A 3D 3 × 3 × 3 stencil's row of three nodes: their x, y, z are nine doubles; lanes 0–7
