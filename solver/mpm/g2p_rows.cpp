@@ -44,10 +44,28 @@ bool g2p_rows_scalar(const Arrays& a, G2PParameters q, Index k_begin, Index k_en
   return finite;
 }
 
+// Particle p's new velocity (the FLIP / PIC blend) and displacement from Σ S v_new and
+// Σ S (v_new − v), the low and high halves of sums; finite becomes false if either is not.
+__attribute__((target("avx2"), always_inline)) inline __m128d move_particle(const G2PArrays2& a, G2PParameters q,
+                                                                            Index p, __m256d sums, bool& finite) {
+  const __m128d v_pic = _mm256_castpd256_pd128(sums), dv = _mm256_extractf128_pd(sums, 1);
+  double* vp = a.velocity[p].data();
+  double* up = a.displacement[p].data();
+  const __m128d v = _mm_add_pd(_mm_mul_pd(_mm_set1_pd(q.flip), _mm_add_pd(_mm_loadu_pd(vp), dv)),
+                               _mm_mul_pd(_mm_set1_pd(1.0 - q.flip), v_pic));
+  const __m128d u = _mm_add_pd(_mm_loadu_pd(up), _mm_mul_pd(_mm_set1_pd(q.dt), v_pic));
+  _mm_storeu_pd(vp, v);
+  _mm_storeu_pd(up, u);
+  // x − x = 0 exactly for finite x, NaN for ±∞ and NaN.
+  const __m128d zero = _mm_setzero_pd();
+  finite = finite && _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(v, v), zero)) == 3 &&
+      _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(u, u), zero)) == 3;
+  return v;
+}
+
 __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2PParameters q, Index k_begin,
                                                         Index k_end) {
   const __mmask8 six = 0x3f;  // a row's three nodes, x and y
-  const __m128d flip = _mm_set1_pd(q.flip), pic = _mm_set1_pd(1.0 - q.flip), dt = _mm_set1_pd(q.dt);
   bool finite = true;
   for (Index k = k_begin; k < k_end; ++k) {
     if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
@@ -66,17 +84,7 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
       const __m512d c_pic = _mm512_mul_pd(w2[j], vn), c_dv = _mm512_mul_pd(w2[j], _mm512_sub_pd(vn, vo));
       for (int i = 0; i < 3; ++i) sums = _mm256_add_pd(sums, node_pairs(c_pic, c_dv, i));  // as the scalar sum
     }
-    const __m128d v_pic = _mm256_castpd256_pd128(sums), dv = _mm256_extractf128_pd(sums, 1);
-    double* vp = a.velocity[p].data();
-    double* up = a.displacement[p].data();
-    const __m128d v = _mm_add_pd(_mm_mul_pd(flip, _mm_add_pd(_mm_loadu_pd(vp), dv)), _mm_mul_pd(pic, v_pic));
-    const __m128d u = _mm_add_pd(_mm_loadu_pd(up), _mm_mul_pd(dt, v_pic));
-    _mm_storeu_pd(vp, v);
-    _mm_storeu_pd(up, u);
-    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN.
-    const __m128d zero = _mm_setzero_pd();
-    finite = finite && _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(v, v), zero)) == 3 &&
-        _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(u, u), zero)) == 3;
+    const __m128d v = move_particle(a, q, p, sums, finite);
     if (q.remap) {
       const double m = a.mass[p], mvx = m * v[0], mvy = m * v[1];
       const __m512d mv3 = _mm512_set_pd(0.0, 0.0, mvy, mvx, mvy, mvx, mvy, mvx);  // m v per node
@@ -91,7 +99,6 @@ __attribute__((target("avx512f"))) bool g2p_rows_avx512(const G2PArrays2& a, G2P
 
 // The same below AVX-512, a row as a 256-bit and a 128-bit register (Row2, stencil_row.hpp).
 __attribute__((target("avx2"))) bool g2p_rows_avx2(const G2PArrays2& a, G2PParameters q, Index k_begin, Index k_end) {
-  const __m128d flip = _mm_set1_pd(q.flip), pic = _mm_set1_pd(1.0 - q.flip), dt = _mm_set1_pd(q.dt);
   bool finite = true;
   for (Index k = k_begin; k < k_end; ++k) {
     if (k + kPrefetchAhead < k_end) prefetch_moved(a, q.remap, a.order[k + kPrefetchAhead]);
@@ -108,17 +115,7 @@ __attribute__((target("avx2"))) bool g2p_rows_avx2(const G2PArrays2& a, G2PParam
       const Row2 c_pic = mul(w[j], vn), c_dv = mul(w[j], sub(vn, vo));
       for (int i = 0; i < 3; ++i) sums = _mm256_add_pd(sums, node_pairs(c_pic, c_dv, i));  // as the scalar sum
     }
-    const __m128d v_pic = _mm256_castpd256_pd128(sums), dv = _mm256_extractf128_pd(sums, 1);
-    double* vp = a.velocity[p].data();
-    double* up = a.displacement[p].data();
-    const __m128d v = _mm_add_pd(_mm_mul_pd(flip, _mm_add_pd(_mm_loadu_pd(vp), dv)), _mm_mul_pd(pic, v_pic));
-    const __m128d u = _mm_add_pd(_mm_loadu_pd(up), _mm_mul_pd(dt, v_pic));
-    _mm_storeu_pd(vp, v);
-    _mm_storeu_pd(up, u);
-    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN.
-    const __m128d zero = _mm_setzero_pd();
-    finite = finite && _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(v, v), zero)) == 3 &&
-        _mm_movemask_pd(_mm_cmpeq_pd(_mm_sub_pd(u, u), zero)) == 3;
+    const __m128d v = move_particle(a, q, p, sums, finite);
     if (q.remap) {
       const double m = a.mass[p];
       const Row2 mv = every_node(m * v[0], m * v[1]);
