@@ -9,10 +9,12 @@
 #
 # CI's share keeps ASan whole and, of UBSan, the pointer-overflow and bounds checks (the class
 # of defect this tier has found: a pointer formed before a buffer), and runs one of the scene
-# fuzzer's four shards (60 of its 240 mutants; the release tier runs all four). On the 2-core
+# fuzzer's four shards (60 of its 240 mutants; the release tier runs all four). It leaves out
+# LpsPlasticFailure.ParticlesFailExactlyByTheRule (110 s instrumented; the failure path's code is
+# run by the other LpsPlasticFailure tests, and the test runs in the release tier). On the 2-core
 # AMD Zen 3 of 2026-11-30 the complete tier took 13.3 min to build and 9.3 min to test; CI's
-# share with two shards 9.5 and 5.1 min (the other UBSan checks cost 30 % of every instrumented
-# compile).
+# share with two shards 9.5 and 5.1 min, and the whole of ci/test.sh 39.4 min with one (the other
+# UBSan checks cost 30 % of every instrumented compile).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=build-sanitize
@@ -29,7 +31,7 @@ if [ "$complete" = 1 ]; then
   skip='^ParaView\.'
 else
   checks=address,pointer-overflow,bounds
-  skip='^ParaView\.|^SceneFuzz\..*[234]$'
+  skip='^ParaView\.|^SceneFuzz\..*[234]$|^LpsPlasticFailure\.ParticlesFailExactlyByTheRule$'
 fi
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 \
   -DCMAKE_CXX_FLAGS="-fsanitize=$checks -fno-omit-frame-pointer -fno-sanitize-recover=all" \
