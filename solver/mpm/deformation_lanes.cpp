@@ -111,11 +111,37 @@ __attribute__((target("avx512f"))) Mat<3> velocity_gradient_rows3_avx512(const S
   return out;
 }
 
+// The same below AVX-512 (Row3, stencil_row.hpp).
+__attribute__((target("avx2"))) Mat<3> velocity_gradient_rows3_avx2(const Stencil<3>& st, const Vec<3>* vg,
+                                                                    const IVec<3>& stride) {
+  __m256d col0 = _mm256_setzero_pd(), col1 = col0, col2 = col0;
+  const Index base = st.first[0] + st.first[1] * stride[1] + st.first[2] * stride[2];
+  for (int l = 0; l < 3; ++l)
+    for (int j = 0; j < 3; ++j) {
+      const double* v_at = vg[base + j * stride[1] + l * stride[2]].data();
+      const Row3ShapeAvx2 shape = row3_shape_avx2(st, j, l, true);
+      const Row3 v = load_row3(v_at);
+      const Row3 c0 = mul(v, shape.gx), c1 = mul(v, shape.gy), c2 = mul(v, shape.gz);
+      const double n0 = v_at[8] * shape.gx2, n1 = v_at[8] * shape.gy2, n2 = v_at[8] * shape.gz2;
+      for (int i = 0; i < 3; ++i) {
+        col0 = _mm256_add_pd(col0, row3_node(c0, n0, i));
+        col1 = _mm256_add_pd(col1, row3_node(c1, n1, i));
+        col2 = _mm256_add_pd(col2, row3_node(c2, n2, i));
+      }
+    }
+  alignas(32) double c[3][4];
+  _mm256_store_pd(c[0], col0), _mm256_store_pd(c[1], col1), _mm256_store_pd(c[2], col2);
+  Mat<3> out;
+  for (int a = 0; a < 3; ++a)
+    for (int b = 0; b < 3; ++b) out(a, b) = c[b][a];
+  return out;
+}
+
 }  // namespace
 
 std::vector<LaneVariant<VelocityGradientRows3Function>> velocity_gradient_rows3_variants() {
-  // No AVX2 or SSE2 rows: those machines run the scalar reference.
-  return lane_variants<VelocityGradientRows3Function>(velocity_gradient_rows3_scalar, velocity_gradient_rows3_scalar,
+  // No SSE2 rows: that machine runs the scalar reference.
+  return lane_variants<VelocityGradientRows3Function>(velocity_gradient_rows3_scalar, velocity_gradient_rows3_avx2,
                                                       velocity_gradient_rows3_avx512);
 }
 

@@ -183,11 +183,61 @@ __attribute__((target("avx512f"))) bool g2p_rows3_avx512(const G2PArrays3& a, G2
   return finite;
 }
 
+// The same below AVX-512 (Row3, stencil_row.hpp); a particle's x, y, z in lanes 0–2.
+__attribute__((target("avx2"))) bool g2p_rows3_avx2(const G2PArrays3& a, G2PParameters q, Index k_begin, Index k_end) {
+  const __m256d flip = _mm256_set1_pd(q.flip), pic = _mm256_set1_pd(1.0 - q.flip), dt = _mm256_set1_pd(q.dt);
+  bool finite = true;
+  for (Index k = k_begin; k < k_end; ++k) {
+    const Index p = a.order[k];
+    const Stencil<3>& st = a.stencil[k];
+    const Index base = st.first[0] + st.first[1] * a.stride[1] + st.first[2] * a.stride[2];
+    __m256d v_pic = _mm256_setzero_pd(), dv = v_pic;
+    for (int l = 0; l < 3; ++l)
+      for (int j = 0; j < 3; ++j) {
+        const Index row = base + j * a.stride[1] + l * a.stride[2];
+        const Row3ShapeAvx2 shape = row3_shape_avx2(st, j, l, false);
+        const Row3& w = shape.w;
+        const double w2 = shape.w2;
+        const double* vn_at = a.grid_velocity_new[row].data();
+        const double* vo_at = a.grid_velocity[row].data();
+        const Row3 vn = load_row3(vn_at), vo = load_row3(vo_at);
+        const Row3 c_pic = mul(w, vn), c_dv = mul(w, sub(vn, vo));
+        const double pic9 = w2 * vn_at[8], dv9 = w2 * (vn_at[8] - vo_at[8]);
+        for (int i = 0; i < 3; ++i) {  // node by node, as the scalar sum
+          v_pic = _mm256_add_pd(v_pic, row3_node(c_pic, pic9, i));
+          dv = _mm256_add_pd(dv, row3_node(c_dv, dv9, i));
+        }
+      }
+    double* vp = a.velocity[p].data();
+    double* up = a.displacement[p].data();
+    const __m256d v = _mm256_add_pd(_mm256_mul_pd(flip, _mm256_add_pd(load_xyz(vp), dv)), _mm256_mul_pd(pic, v_pic));
+    const __m256d u = _mm256_add_pd(load_xyz(up), _mm256_mul_pd(dt, v_pic));
+    store_xyz(vp, v);
+    store_xyz(up, u);
+    // x − x = 0 exactly for finite x, NaN for ±∞ and NaN (lane 3 is zero).
+    const __m256d zero = _mm256_setzero_pd();
+    finite = finite && _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(v, v), zero, _CMP_EQ_OQ)) == 0xf &&
+        _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(u, u), zero, _CMP_EQ_OQ)) == 0xf;
+    if (q.remap) {
+      const double m = a.mass[p];
+      const Vec<3> mv(m * vp[0], m * vp[1], m * vp[2]);
+      const __m256d mv4 = xyz_lanes(mv);
+      for (int l = 0; l < 3; ++l)
+        for (int j = 0; j < 3; ++j)
+          for (int i = 0; i < 3; ++i) {  // node by node (add_to_node)
+            double* at = a.grid_momentum[base + i + j * a.stride[1] + l * a.stride[2]].data();
+            add_to_node(at, _mm256_mul_pd(_mm256_set1_pd(st.w[0][i] * st.w[1][j] * st.w[2][l]), mv4));
+          }
+    }
+  }
+  return finite;
+}
+
 }  // namespace
 
 std::vector<LaneVariant<G2PRows3Function>> g2p_rows3_variants() {
-  // No AVX2 or SSE2 rows: those machines run the scalar reference.
-  return lane_variants<G2PRows3Function>(g2p_rows_scalar<3>, g2p_rows_scalar<3>, g2p_rows3_avx512);
+  // No SSE2 rows: that machine runs the scalar reference.
+  return lane_variants<G2PRows3Function>(g2p_rows_scalar<3>, g2p_rows3_avx2, g2p_rows3_avx512);
 }
 
 bool g2p_rows3(const G2PArrays3& arrays, G2PParameters parameters, Index k_begin, Index k_end) {

@@ -113,4 +113,85 @@ __attribute__((target("avx512f"), always_inline)) inline Row3Shape row3_shape(co
   return r;
 }
 
+// Below AVX-512 the same row's lanes 0–7 are two 256-bit registers (lanes 0–3 and 4–7).
+struct Row3 {
+  __m256d lo, hi;
+};
+
+__attribute__((target("avx2"), always_inline)) inline Row3 load_row3(const double* at) {
+  return {_mm256_loadu_pd(at), _mm256_loadu_pd(at + 4)};
+}
+__attribute__((target("avx2"), always_inline)) inline Row3 sub(Row3 a, Row3 b) {
+  return {_mm256_sub_pd(a.lo, b.lo), _mm256_sub_pd(a.hi, b.hi)};
+}
+__attribute__((target("avx2"), always_inline)) inline Row3 mul(Row3 a, Row3 b) {
+  return {_mm256_mul_pd(a.lo, b.lo), _mm256_mul_pd(a.hi, b.hi)};
+}
+
+// Node i's x, y, z of a row (ninth: its ninth double) in lanes 0–2, lane 3 zero, as row_node.
+__attribute__((target("avx2"), always_inline)) inline __m256d row3_node(Row3 r, double ninth, int i) {
+  const __m256d zero = _mm256_setzero_pd();
+  switch (i) {
+    case 0:
+      return _mm256_blend_pd(r.lo, zero, 0x8);
+    case 1: {  // (lo₃, hi₀, hi₁): lanes 1 and 3 of (lo₂, lo₃, hi₀, hi₁) with lane 0 of (hi₀, hi₁, 0, 0)
+      const __m256d middle = _mm256_permute2f128_pd(r.lo, r.hi, 0x21);
+      return _mm256_shuffle_pd(middle, _mm256_blend_pd(r.hi, zero, 0xc), 0x5);
+    }
+    default:
+      return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm256_extractf128_pd(r.hi, 1)), _mm_set_sd(ninth), 1);
+  }
+}
+
+// Every lane times one value.
+__attribute__((target("avx2"), always_inline)) inline Row3 times(Row3 a, __m256d b) {
+  return {_mm256_mul_pd(a.lo, b), _mm256_mul_pd(a.hi, b)};
+}
+
+// A 3D node's x, y, z in lanes 0–2 of a 256-bit register (lane 3 zero), loaded and stored
+// as a 128-bit and a 64-bit piece. The G2P remap sums into the grid node by node this way:
+// a row stored as two 256-bit pieces is read back by the next particle one node on, and a
+// load that spans two earlier stores cannot take its data from the store buffer but waits
+// until they reach the cache (3D G2P with such rows: 370 ns per particle against the scalar
+// code's 155, 3D P2G 450 against 250, on an AVX2 Zen 3).
+__attribute__((target("avx2"), always_inline)) inline __m256d load_xyz(const double* at) {
+  return _mm256_insertf128_pd(_mm256_castpd128_pd256(_mm_loadu_pd(at)), _mm_load_sd(at + 2), 1);
+}
+__attribute__((target("avx2"), always_inline)) inline void store_xyz(double* at, __m256d v) {
+  _mm_storeu_pd(at, _mm256_castpd256_pd128(v));
+  _mm_store_sd(at + 2, _mm256_extractf128_pd(v, 1));
+}
+__attribute__((target("avx2"), always_inline)) inline __m256d xyz_lanes(const Vec<3>& a) {
+  return _mm256_set_pd(0.0, a[2], a[1], a[0]);
+}
+__attribute__((target("avx2"), always_inline)) inline void add_to_node(double* at, __m256d term) {
+  store_xyz(at, _mm256_add_pd(load_xyz(at), term));
+}
+
+// row3_shape's products, lane for lane and in the same order.
+struct Row3ShapeAvx2 {
+  Row3 w, gx, gy, gz;
+  double w2, gx2, gy2, gz2;
+};
+
+__attribute__((target("avx2"), always_inline)) inline Row3ShapeAvx2 row3_shape_avx2(const Stencil<3>& st, int j, int l,
+                                                                                    bool gradient) {
+  const std::array<double, 3>&x = st.w[0], &dx = st.dw[0];
+  const double wy = st.w[1][j], wz = st.w[2][l], dwy = st.dw[1][j], dwz = st.dw[2][l];
+  const Row3 wx{_mm256_set_pd(x[1], x[0], x[0], x[0]), _mm256_set_pd(x[2], x[2], x[1], x[1])};
+  const __m256d wyv = _mm256_set1_pd(wy), wzv = _mm256_set1_pd(wz);
+  Row3ShapeAvx2 r{};
+  r.w = times(times(wx, wyv), wzv);
+  r.w2 = x[2] * wy * wz;
+  if (gradient) {
+    const Row3 dwx{_mm256_set_pd(dx[1], dx[0], dx[0], dx[0]), _mm256_set_pd(dx[2], dx[2], dx[1], dx[1])};
+    const __m256d dwyv = _mm256_set1_pd(dwy), dwzv = _mm256_set1_pd(dwz);
+    r.gx = times(times(dwx, wyv), wzv);
+    r.gy = times(times(wx, dwyv), wzv);  // (∂Sy Sx) Sz: a product commutes bit for bit
+    r.gz = times(times(wx, dwzv), wyv);
+    r.gx2 = dx[2] * wy * wz, r.gy2 = dwy * x[2] * wz, r.gz2 = dwz * x[2] * wy;
+  }
+  return r;
+}
+
 }  // namespace pdmpm::mpm
