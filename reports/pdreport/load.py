@@ -455,6 +455,7 @@ def load_provenance(path: Path) -> dict:
     for key in _PROVENANCE_TEXT:
         text(obj, key)
     choice(obj, "tree", ("clean", "dirty", "unknown"))
+    text(obj, "simd", required=False)  # results written before it was recorded have none
     if not isinstance(obj.get("threads"), int) or isinstance(obj.get("threads"), bool):
         raise Bad('"threads" must be an integer' if "threads" in obj else 'missing "threads"')
     return obj

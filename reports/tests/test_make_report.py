@@ -148,6 +148,13 @@ class GoodInputs(ReportTestCase):
         self.assertIn('class="badge dirty"', page)
         self.assertIn("DIRTY", page)
 
+    def test_the_instruction_set_is_shown_when_recorded(self):
+        _, page = self.run_report()
+        self.assertNotIn("vector instructions", page)  # the fixture's provenance predates the key
+        self.edit_json(self.results / "provenance.json", simd="avx2")
+        _, page = self.run_report()
+        self.assertIn("<dd>avx2 (PD kernels and MPM lanes)</dd>", page)
+
     def test_same_input_gives_the_same_page(self):
         self.run_report()
         first = self.out.read_bytes()
@@ -292,6 +299,11 @@ class MalformedInputs(ReportTestCase):
         self.edit_json(path, threads="two")
         page = self.check_malformed(path, ['"threads"'])
         self.assertIn("provenance", page)
+
+    def test_malformed_instruction_set(self):
+        path = self.results / "provenance.json"
+        self.edit_json(path, simd=512)
+        self.check_malformed(path, ['"simd"'])
 
     def test_malformed_benchmark_file(self):
         path = self.results / "bench" / "fixture_bench.json"

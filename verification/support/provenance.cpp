@@ -1,5 +1,6 @@
 #include "verification/support/provenance.hpp"
 #include "solver/core/build_info.hpp"
+#include "solver/pd/kernels/bond_kernels.hpp"
 #include "verification/support/command_line.hpp"
 
 #include <omp.h>
@@ -35,9 +36,16 @@ nlohmann::json provenance() {
   const std::time_t now = std::time(nullptr);
   char date[64];
   std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
-  return {{"git_sha", build_info::git_sha()}, {"tree", tree_state()},     {"date", date},
-          {"compiler", build_info::compiler()}, {"flags", build_info::flags()},   {"cpu", cpu_model()},
-          {"threads", omp_get_max_threads()}};
+  return {{"git_sha", build_info::git_sha()},
+          {"tree", tree_state()},
+          {"date", date},
+          {"compiler", build_info::compiler()},
+          {"flags", build_info::flags()},
+          {"cpu", cpu_model()},
+          {"threads", omp_get_max_threads()},
+          // The vector instruction set the PD kernels and the MPM lanes run: timings and the
+          // hybrid's saving depend on it (docs/models/mpm.md, "Cost").
+          {"simd", pd::kernels::simd_level()}};
 }
 
 }  // namespace pdmpm::test
