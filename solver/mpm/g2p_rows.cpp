@@ -219,9 +219,7 @@ __attribute__((target("avx2"))) bool g2p_rows3_avx2(const G2PArrays3& a, G2PPara
     finite = finite && _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(v, v), zero, _CMP_EQ_OQ)) == 0xf &&
         _mm256_movemask_pd(_mm256_cmp_pd(_mm256_sub_pd(u, u), zero, _CMP_EQ_OQ)) == 0xf;
     if (q.remap) {
-      const double m = a.mass[p];
-      const Vec<3> mv(m * vp[0], m * vp[1], m * vp[2]);
-      const __m256d mv4 = xyz_lanes(mv);
+      const __m256d mv4 = _mm256_mul_pd(_mm256_set1_pd(a.mass[p]), v);  // m v, lane 3 zero
       for (int l = 0; l < 3; ++l)
         for (int j = 0; j < 3; ++j)
           for (int i = 0; i < 3; ++i) {  // node by node (add_to_node)

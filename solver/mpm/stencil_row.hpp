@@ -161,9 +161,6 @@ __attribute__((target("avx2"), always_inline)) inline void store_xyz(double* at,
   _mm_storeu_pd(at, _mm256_castpd256_pd128(v));
   _mm_store_sd(at + 2, _mm256_extractf128_pd(v, 1));
 }
-__attribute__((target("avx2"), always_inline)) inline __m256d xyz_lanes(const Vec<3>& a) {
-  return _mm256_set_pd(0.0, a[2], a[1], a[0]);
-}
 __attribute__((target("avx2"), always_inline)) inline void add_to_node(double* at, __m256d term) {
   store_xyz(at, _mm256_add_pd(load_xyz(at), term));
 }
