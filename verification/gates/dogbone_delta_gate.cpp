@@ -4,8 +4,8 @@
 // the hybrid is the grid alone (dogbone.*.hybrid.agrees_with_mpm), and with the elastic-state
 // transfer the region starts with the grid's stress, so the pure-MPM runs measure the peak stress
 // the PD region holds at the first crack at half the cost of a hybrid (whose step is the PD-stable
-// one). The finest level takes about an hour on one core, so CI does not run them: they are run by
-// the documented command (verification/measured/dogbone_delta/README.md) and digested
+// one). The finest level takes 70 minutes on one core, so CI does not run them: they are run by
+// the README's command (section on the dog-bone's δ-convergence) and digested
 // (verification/tools/dogbone_delta_digest.py); these tests read the digests: the fast tier
 // shows them, the full tier gates the convergence (observed order and Richardson's extrapolated
 // value from the three finest levels with a failure).

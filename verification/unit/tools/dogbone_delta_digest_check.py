@@ -63,7 +63,7 @@ def main():
     assert b["time"] == 0.0 and b["eq_plastic_strain"] == 0.7 and b["triaxiality"] == 0.4, b
     # Δx equals the raster's cell: one cell per site, the sites' values in order, one row.
     assert b["map"]["values"] == [[0.1, 0.7, 0.3]], b["map"]
-    assert np.allclose(d["failed_at_end"]["sites"], [[1.5 * DX, 0.5 * DX]]), d["failed_at_end"]
+    assert np.allclose(b["site"], [1.5 * DX, 0.5 * DX]), b["site"]
     # Rows within 50 µs of the failure are all kept (here every row).
     assert len(d["history"]["time"]) == 40
     with tempfile.TemporaryDirectory() as root:
